@@ -1,0 +1,2 @@
+//! A geometry-agnostic bounding volume hierarchy.
+#![warn(missing_docs)]

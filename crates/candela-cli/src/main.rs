@@ -1,0 +1,2 @@
+//! `candela`: render a scene from the command line.
+fn main() {}

@@ -1,0 +1,2 @@
+//! Image buffers, PNG and OpenEXR output, tone mapping and error metrics.
+#![warn(missing_docs)]

@@ -1,0 +1,1 @@
+//! BSDFs in a local shading frame.

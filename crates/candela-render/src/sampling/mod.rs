@@ -1,0 +1,1 @@
+//! Deterministic samplers and warps from the unit square to the domains we sample.

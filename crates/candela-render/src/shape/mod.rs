@@ -1,0 +1,3 @@
+//! Ray–shape intersection: triangles and spheres.
+
+pub mod triangle;
