@@ -1,0 +1,184 @@
+//! Cameras: where primary rays come from.
+//!
+//! [`Camera`] is a pinhole (or, with a lens radius, thin-lens) perspective
+//! camera described by an eye point, an orthonormal basis and the tangents of
+//! its half fields of view. How it is placed is decided in [`framing`]: the
+//! CS184 orbit rule (the default for `.dae` files, so users see the images
+//! they know) or the literal camera of the file.
+
+pub mod framing;
+
+use crate::geometry::Ray;
+use glam::{Vec2, Vec3};
+
+/// A perspective camera for a `width` × `height` image.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye point (centre of the lens).
+    pub eye: Vec3,
+    /// Unit vector to the right of the image, in world space.
+    pub right: Vec3,
+    /// Unit vector toward the top of the image, in world space.
+    pub up: Vec3,
+    /// Unit viewing direction, in world space.
+    pub forward: Vec3,
+    /// tan(hfov / 2).
+    pub tan_half_width: f32,
+    /// tan(vfov / 2).
+    pub tan_half_height: f32,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Lens radius; 0 is a pinhole.
+    pub lens_radius: f32,
+    /// Distance to the plane in focus (used when `lens_radius > 0`).
+    pub focal_distance: f32,
+}
+
+impl Camera {
+    /// A pinhole camera at `eye` looking at `target`, with `up` as the
+    /// approximate up direction and the given full fields of view in degrees.
+    pub fn look_at(
+        eye: Vec3,
+        target: Vec3,
+        up: Vec3,
+        hfov_deg: f32,
+        vfov_deg: f32,
+        width: u32,
+        height: u32,
+    ) -> Self {
+        let forward = (target - eye).normalize();
+        let right = forward.cross(up).normalize();
+        let up = right.cross(forward);
+        Self {
+            eye,
+            right,
+            up,
+            forward,
+            tan_half_width: (hfov_deg.to_radians() * 0.5).tan(),
+            tan_half_height: (vfov_deg.to_radians() * 0.5).tan(),
+            width,
+            height,
+            lens_radius: 0.0,
+            focal_distance: (target - eye).length(),
+        }
+    }
+
+    /// Horizontal field of view in degrees.
+    pub fn hfov_deg(&self) -> f32 {
+        2.0 * self.tan_half_width.atan().to_degrees()
+    }
+
+    /// Vertical field of view in degrees.
+    pub fn vfov_deg(&self) -> f32 {
+        2.0 * self.tan_half_height.atan().to_degrees()
+    }
+
+    /// The ray through film position `film` (in pixels, x to the right, y
+    /// down from the top-left corner) and lens sample `u_lens` in [0,1)².
+    pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> Ray {
+        let sx = (2.0 * film.x / self.width as f32 - 1.0) * self.tan_half_width;
+        let sy = (1.0 - 2.0 * film.y / self.height as f32) * self.tan_half_height;
+        let dir_cam = Vec3::new(sx, sy, 1.0);
+        if self.lens_radius <= 0.0 {
+            let dir = self.to_world(dir_cam).normalize();
+            return Ray::new(self.eye, dir);
+        }
+        // Thin lens: every ray through the lens point meets the pinhole ray on
+        // the plane of focus.
+        let focus = dir_cam * self.focal_distance;
+        let lens = concentric_disk(u_lens) * self.lens_radius;
+        let origin_cam = Vec3::new(lens.x, lens.y, 0.0);
+        let dir = self.to_world(focus - origin_cam).normalize();
+        Ray::new(self.eye + self.right * lens.x + self.up * lens.y, dir)
+    }
+
+    fn to_world(&self, v: Vec3) -> Vec3 {
+        self.right * v.x + self.up * v.y + self.forward * v.z
+    }
+}
+
+/// Shirley–Chiu concentric map from the unit square to the unit disk.
+fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o == Vec2::ZERO {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, std::f32::consts::FRAC_PI_4 * (o.y / o.x))
+    } else {
+        (
+            o.y,
+            std::f32::consts::FRAC_PI_2 - std::f32::consts::FRAC_PI_4 * (o.x / o.y),
+        )
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn camera() -> Camera {
+        Camera::look_at(
+            Vec3::new(0.0, 0.0, 5.0),
+            Vec3::ZERO,
+            Vec3::Y,
+            60.0,
+            45.0,
+            640,
+            480,
+        )
+    }
+
+    #[test]
+    fn centre_pixel_looks_at_target() {
+        let c = camera();
+        let r = c.generate_ray(Vec2::new(320.0, 240.0), Vec2::ZERO);
+        assert!((r.dir - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-6);
+    }
+
+    #[test]
+    fn image_corners_span_the_field_of_view() {
+        let c = camera();
+        let left = c.generate_ray(Vec2::new(0.0, 240.0), Vec2::ZERO);
+        let angle = left.dir.dot(c.forward).acos().to_degrees();
+        assert!((angle - 30.0).abs() < 1e-3, "{angle}");
+        assert!(left.dir.x < 0.0, "x = 0 is the left edge");
+        let top = c.generate_ray(Vec2::new(320.0, 0.0), Vec2::ZERO);
+        let angle = top.dir.dot(c.forward).acos().to_degrees();
+        assert!((angle - 22.5).abs() < 1e-3, "{angle}");
+        assert!(top.dir.y > 0.0, "y = 0 is the top edge");
+    }
+
+    #[test]
+    fn thin_lens_rays_meet_on_the_focal_plane() {
+        let mut c = camera();
+        c.lens_radius = 0.3;
+        c.focal_distance = 4.0;
+        let film = Vec2::new(100.0, 50.0);
+        let pinhole = {
+            let mut p = c.clone();
+            p.lens_radius = 0.0;
+            p.generate_ray(film, Vec2::ZERO)
+        };
+        let t_focus = 4.0 / pinhole.dir.dot(c.forward);
+        let focus = pinhole.at(t_focus);
+        for u in [Vec2::new(0.1, 0.9), Vec2::new(0.7, 0.2), Vec2::new(0.5, 0.5)] {
+            let r = c.generate_ray(film, u);
+            let t = (focus - r.origin).dot(c.forward) / r.dir.dot(c.forward);
+            assert!((r.at(t) - focus).length() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn concentric_disk_stays_in_the_disk() {
+        for i in 0..=16 {
+            for j in 0..=16 {
+                let p = concentric_disk(Vec2::new(i as f32 / 16.0, j as f32 / 16.0));
+                assert!(p.length() <= 1.0 + 1e-6);
+            }
+        }
+    }
+}

@@ -1,0 +1,157 @@
+//! Direct lighting at one shading point: light sampling with optional MIS
+//! against BSDF sampling (Veach 1997, ch. 9; the multi-sample model with
+//! `n` light samples and one BSDF sample, power heuristic β = 2).
+//!
+//! The functions here are the small pieces of Tungsten's `TraceBase`:
+//! [`estimate_direct`] sums the light samples at a vertex, and
+//! [`bsdf_hit_weight`] is the matching MIS weight for the BSDF sample that
+//! finds an emitter on its own.
+
+use super::ThreadContext;
+use crate::bsdf::Bsdf;
+use crate::geometry::{Frame, Ray};
+use crate::light::LightSample;
+use crate::sampling::Sampler;
+use crate::scene::{Scene, SurfaceHit};
+use glam::{Vec2, Vec3};
+
+/// Fraction of a shadow ray's length left unchecked at the light's end, so
+/// that the light's own surface does not shadow it (pbrt's ShadowEpsilon).
+const SHADOW_EPSILON: f32 = 1e-4;
+
+/// The power heuristic for `nf` samples of density `f` against `ng` of `g`.
+pub fn power_heuristic(nf: f32, f_pdf: f32, ng: f32, g_pdf: f32) -> f32 {
+    let f = nf * f_pdf;
+    let g = ng * g_pdf;
+    if f.is_infinite() {
+        return 1.0;
+    }
+    if f == 0.0 && g == 0.0 {
+        return 0.0;
+    }
+    (f * f) / (f * f + g * g)
+}
+
+/// How a vertex gathers direct light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightingMode {
+    /// No light sampling: emitters are found by (hemisphere) BSDF rays only.
+    Hemisphere,
+    /// Light sampling only; BSDF rays do not count the emitters they hit.
+    Light,
+    /// Both, weighted by the power heuristic.
+    Mis,
+}
+
+/// Whether the segment from `hit` toward `wi` is free up to `distance`.
+pub fn unoccluded(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    wi: Vec3,
+    distance: f32,
+    ctx: &mut ThreadContext,
+) -> bool {
+    let origin = hit.spawn_origin(wi);
+    let t_max = if distance.is_finite() {
+        (distance - (origin - hit.p).length()) * (1.0 - SHADOW_EPSILON)
+    } else {
+        f32::INFINITY
+    };
+    if t_max <= 0.0 {
+        return true;
+    }
+    let mut ray = Ray::new(origin, wi);
+    ray.t_max = t_max;
+    ctx.rays.shadow += 1;
+    !scene.occluded(&ray, &mut ctx.rays.traversal)
+}
+
+/// Light-sampled direct radiance reflected toward `hit.wo`:
+/// `light_samples` samples of the non-delta lights (chosen by power) plus one
+/// sample of each delta light, each weighted for MIS when `mode` is
+/// [`LightingMode::Mis`].
+#[allow(clippy::too_many_arguments)]
+pub fn estimate_direct(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    frame: &Frame,
+    bsdf: &Bsdf,
+    mode: LightingMode,
+    light_samples: u32,
+    sampler: &mut Sampler,
+    ctx: &mut ThreadContext,
+) -> Vec3 {
+    let lights = &scene.lights;
+    let wo = frame.to_local(hit.wo);
+    let mut total = Vec3::ZERO;
+    for light in lights.delta_lights() {
+        // Delta lights take no random numbers, so the sampler's dimensions
+        // stay aligned whatever the scene holds.
+        if let Some(s) = light.sample_li(hit.p, Vec2::ZERO) {
+            total += sample_contribution(scene, hit, frame, bsdf, wo, s, None, ctx);
+        }
+    }
+    if !lights.has_sampled_lights() || light_samples == 0 {
+        return total;
+    }
+    let mut sum = Vec3::ZERO;
+    for _ in 0..light_samples {
+        let u_choose = sampler.next_1d();
+        let u = sampler.next_2d();
+        let Some((index, pmf)) = lights.choose(u_choose) else {
+            break;
+        };
+        let light = lights.get(index);
+        let mis = (mode == LightingMode::Mis && light.is_hittable()).then_some(light_samples as f32);
+        if let Some(sample) = light.sample_li(hit.p, u) {
+            let mut s = sample;
+            s.pdf *= pmf;
+            sum += sample_contribution(scene, hit, frame, bsdf, wo, s, mis, ctx);
+        }
+    }
+    total + sum / light_samples as f32
+}
+
+/// `f · L · |cos| / pdf` for one light sample, times its MIS weight when
+/// `mis_count` (the number of light samples) is given, if unoccluded.
+#[allow(clippy::too_many_arguments)]
+fn sample_contribution(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    frame: &Frame,
+    bsdf: &Bsdf,
+    wo: Vec3,
+    s: LightSample,
+    mis_count: Option<f32>,
+    ctx: &mut ThreadContext,
+) -> Vec3 {
+    if s.pdf <= 0.0 || s.l == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    // Light arriving from behind the geometric surface reaches this side
+    // only through a transmissive BSDF (no leaks through walls whose
+    // shading normals bend).
+    if s.wi.dot(hit.ng) <= 0.0 && !bsdf.flags().is_transmission() {
+        return Vec3::ZERO;
+    }
+    let wi = frame.to_local(s.wi);
+    let f = bsdf.f(wo, wi);
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    if !unoccluded(scene, hit, s.wi, s.distance, ctx) {
+        return Vec3::ZERO;
+    }
+    let weight = match mis_count {
+        Some(n) => power_heuristic(n, s.pdf, 1.0, bsdf.pdf(wo, wi)),
+        None => 1.0,
+    };
+    f * s.l * wi.z.abs() * (weight / s.pdf)
+}
+
+/// MIS weight of an emitter found by a BSDF sample of density `bsdf_pdf`
+/// when `light_samples` light samples would have found it with density
+/// `light_pdf` (already including the light's selection probability).
+pub fn bsdf_hit_weight(bsdf_pdf: f32, light_pdf: f32, light_samples: u32) -> f32 {
+    power_heuristic(1.0, bsdf_pdf, light_samples as f32, light_pdf)
+}

@@ -1,0 +1,223 @@
+//! The path tracer: one flat loop with the throughput `beta`, the bounce
+//! count, the previous BSDF pdf and a specular flag (pbrt-v4's
+//! `PathIntegrator::Li`), next-event estimation at every non-specular vertex
+//! and Russian roulette on throughput.
+//!
+//! Bounce counting follows CS184: light that reaches the camera after `k`
+//! scattering events has "k bounces" — `k = 0` is an emitter seen directly,
+//! `k = 1` direct lighting. [`PathSettings::bounces`] selects which `k` are
+//! added to the image: `0..=m` normally, `m..=m` for CS184's `-o 0`, `0..=1`
+//! for the direct-only view and `2..=m` for the indirect-only view.
+
+use super::direct::{bsdf_hit_weight, estimate_direct, LightingMode};
+use super::ThreadContext;
+use crate::bsdf::{Bsdf, BsdfSample};
+use crate::geometry::{Frame, Ray};
+use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
+use crate::sampling::Sampler;
+use crate::scene::{Scene, SurfaceHit};
+use glam::Vec3;
+use std::ops::RangeInclusive;
+
+/// Settings of the path tracer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathSettings {
+    /// Bounce counts whose light is added to the image; the path is traced
+    /// up to the end of this range.
+    pub bounces: RangeInclusive<u32>,
+    /// How direct light is gathered at each vertex.
+    pub lighting: LightingMode,
+    /// Light samples per vertex for non-delta lights (`-l`).
+    pub light_samples: u32,
+    /// Russian roulette from this bounce count on (`None`: never).
+    pub roulette_from: Option<u32>,
+}
+
+impl Default for PathSettings {
+    fn default() -> Self {
+        Self {
+            bounces: 0..=5,
+            lighting: LightingMode::Mis,
+            light_samples: 1,
+            roulette_from: Some(3),
+        }
+    }
+}
+
+/// Where the previous scattering event was, for MIS at the next emitter.
+#[derive(Clone, Copy)]
+struct PrevVertex {
+    p: Vec3,
+    bsdf_pdf: f32,
+    specular: bool,
+}
+
+/// Radiance along the camera ray `ray`.
+pub fn path_radiance(
+    scene: &Scene,
+    camera_ray: &Ray,
+    settings: &PathSettings,
+    sampler: &mut Sampler,
+    ctx: &mut ThreadContext,
+) -> Vec3 {
+    let max_depth = *settings.bounces.end();
+    let mut l = Vec3::ZERO;
+    let mut beta = Vec3::ONE;
+    let mut ray = *camera_ray;
+    let mut prev: Option<PrevVertex> = None;
+    let mut depth = 0u32;
+    loop {
+        let Some(hit) = scene.intersect(&ray, &mut ctx.rays.traversal) else {
+            if settings.bounces.contains(&depth) {
+                l += beta * escaped_radiance(scene, &ray, prev, settings);
+            }
+            break;
+        };
+        let material = scene.material(hit.material);
+        if settings.bounces.contains(&depth) && hit.front_face {
+            if let Some(le) = material.emission {
+                l += beta * le * emitter_weight(scene, &ray, &hit, prev, settings);
+            }
+        }
+        if depth >= max_depth {
+            break;
+        }
+        let Some(bsdf) = material.bsdf_at(&hit) else {
+            break; // a pure emitter absorbs
+        };
+        let frame = Frame::from_normal(hit.ns);
+        if settings.lighting != LightingMode::Hemisphere
+            && !bsdf.flags().is_specular()
+            && settings.bounces.contains(&(depth + 1))
+        {
+            l += beta
+                * estimate_direct(
+                    scene,
+                    &hit,
+                    &frame,
+                    &bsdf,
+                    settings.lighting,
+                    settings.light_samples,
+                    sampler,
+                    ctx,
+                );
+        }
+        let Some(s) = sample_direction(&bsdf, &frame, &hit, settings.lighting, sampler) else {
+            break;
+        };
+        let wi = frame.to_world(s.wi);
+        // A direction on the wrong side of the true surface would leak
+        // through it (shading normals bend, geometry does not).
+        let transmits = s.flags.is_transmission();
+        if (wi.dot(hit.ng) > 0.0) == transmits {
+            break;
+        }
+        beta *= s.f * s.wi.z.abs() / s.pdf;
+        prev = Some(PrevVertex {
+            p: hit.p,
+            bsdf_pdf: s.pdf,
+            specular: s.flags.is_specular(),
+        });
+        ray = Ray::new(hit.spawn_origin(wi), wi);
+        ctx.rays.bounce += 1;
+        depth += 1;
+        if let Some(from) = settings.roulette_from {
+            if depth >= from {
+                let survive = beta.max_element().min(1.0);
+                if survive <= 0.0 || sampler.next_1d() >= survive {
+                    break;
+                }
+                beta /= survive;
+            }
+        }
+    }
+    ctx.path_segments += depth as u64 + 1;
+    l
+}
+
+/// The next direction: the BSDF's own sampling, or for CS184's `-H`, a
+/// uniform direction over the hemisphere at non-specular vertices.
+fn sample_direction(
+    bsdf: &Bsdf,
+    frame: &Frame,
+    hit: &SurfaceHit,
+    lighting: LightingMode,
+    sampler: &mut Sampler,
+) -> Option<BsdfSample> {
+    let wo = frame.to_local(hit.wo);
+    let u1 = sampler.next_1d();
+    let u2 = sampler.next_2d();
+    if lighting == LightingMode::Hemisphere && !bsdf.flags().is_specular() {
+        // The hemisphere on the viewer's side of the (unflipped) frame.
+        let local = square_to_uniform_hemisphere(u2);
+        let pdf = uniform_hemisphere_pdf(local);
+        let wi = if wo.z < 0.0 { -local } else { local };
+        let f = bsdf.f(wo, wi);
+        return Some(BsdfSample {
+            wi,
+            f,
+            pdf,
+            flags: bsdf.flags(),
+        });
+    }
+    bsdf.sample(wo, u1, u2).filter(|s| s.pdf > 0.0)
+}
+
+/// MIS weight of emission found by the path itself (not by light sampling).
+fn emitter_weight(
+    scene: &Scene,
+    ray: &Ray,
+    hit: &SurfaceHit,
+    prev: Option<PrevVertex>,
+    settings: &PathSettings,
+) -> f32 {
+    let Some(prev) = prev.filter(|p| !p.specular) else {
+        return 1.0; // seen by the camera or through a mirror: only this path finds it
+    };
+    match settings.lighting {
+        LightingMode::Hemisphere => 1.0,
+        LightingMode::Light => 0.0,
+        LightingMode::Mis => {
+            let Some(index) = scene.lights.light_of_prim(hit.prim) else {
+                return 1.0;
+            };
+            let light_pdf = scene.lights.pmf(index)
+                * scene.lights.get(index).pdf_li(prev.p, ray.dir, hit.p);
+            bsdf_hit_weight(prev.bsdf_pdf, light_pdf, settings.light_samples)
+        }
+    }
+}
+
+/// Radiance of lights at infinity seen along an escaping ray.
+fn escaped_radiance(
+    scene: &Scene,
+    ray: &Ray,
+    prev: Option<PrevVertex>,
+    settings: &PathSettings,
+) -> Vec3 {
+    let mut l = Vec3::ZERO;
+    for index in scene.lights.infinite_lights() {
+        let light = scene.lights.get(index);
+        let crate::light::Light::Ambient(sky) = light else {
+            continue;
+        };
+        let le = sky.le(ray.dir);
+        if le == Vec3::ZERO {
+            continue;
+        }
+        let weight = match prev.filter(|p| !p.specular) {
+            None => 1.0,
+            Some(prev) => match settings.lighting {
+                LightingMode::Hemisphere => 1.0,
+                LightingMode::Light => 0.0,
+                LightingMode::Mis => {
+                    let light_pdf =
+                        scene.lights.pmf(index) * light.pdf_li(prev.p, ray.dir, Vec3::ZERO);
+                    bsdf_hit_weight(prev.bsdf_pdf, light_pdf, settings.light_samples)
+                }
+            },
+        };
+        l += le * weight;
+    }
+    l
+}

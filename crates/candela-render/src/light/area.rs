@@ -1,0 +1,149 @@
+//! Emitting surfaces: mesh triangles, spheres and CGL rectangles, each
+//! one-sided with constant radiance.
+
+use super::{luminance, LightSample};
+use crate::geometry::Frame;
+use crate::sampling::warp::{
+    square_to_uniform_cone, square_to_uniform_triangle, uniform_cone_pdf, Parallelogram,
+};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// The geometry of an area light.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AreaShape {
+    /// A triangle emitting on the side of `normal`.
+    Triangle {
+        /// Corners.
+        v: [Vec3; 3],
+        /// Unit normal of the emitting side.
+        normal: Vec3,
+    },
+    /// A parallelogram `origin + s·edge0 + t·edge1` emitting on the side of `normal`.
+    Rect {
+        /// The parallelogram.
+        shape: Parallelogram,
+        /// Unit normal of the emitting side.
+        normal: Vec3,
+    },
+    /// A sphere emitting outward.
+    Sphere {
+        /// Centre.
+        center: Vec3,
+        /// Radius.
+        radius: f32,
+    },
+}
+
+/// A one-sided emitter of constant radiance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AreaLight {
+    /// Where it emits from.
+    pub shape: AreaShape,
+    /// Emitted radiance.
+    pub radiance: Vec3,
+}
+
+impl AreaShape {
+    /// Surface area.
+    pub fn area(&self) -> f32 {
+        match self {
+            AreaShape::Triangle { v, .. } => 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length(),
+            AreaShape::Rect { shape, .. } => shape.area(),
+            AreaShape::Sphere { radius, .. } => 4.0 * PI * radius * radius,
+        }
+    }
+}
+
+impl AreaLight {
+    /// The radiance leaving the light at a point with outward normal `n`
+    /// toward direction `w`: `radiance` on the emitting side, else zero.
+    pub fn emitted(&self, n: Vec3, w: Vec3) -> Vec3 {
+        if n.dot(w) > 0.0 {
+            self.radiance
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    pub(super) fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        let (q, normal) = match &self.shape {
+            AreaShape::Triangle { v, normal } => {
+                let b = square_to_uniform_triangle(u);
+                (b.x * v[0] + b.y * v[1] + (1.0 - b.x - b.y) * v[2], *normal)
+            }
+            AreaShape::Rect { shape, normal } => (shape.sample(u), *normal),
+            AreaShape::Sphere { center, radius } => return self.sample_sphere(p, *center, *radius, u),
+        };
+        let d = q - p;
+        let dist2 = d.length_squared();
+        let distance = dist2.sqrt();
+        if distance == 0.0 {
+            return None;
+        }
+        let wi = d / distance;
+        let cos_light = -normal.dot(wi);
+        if cos_light <= 0.0 {
+            return None;
+        }
+        Some(LightSample {
+            wi,
+            l: self.radiance,
+            distance,
+            pdf: dist2 / (cos_light * self.shape.area()),
+        })
+    }
+
+    /// Spheres seen from outside are sampled uniformly in the cone they
+    /// subtend (no wasted samples on the far side); from inside they are
+    /// dark, since they emit outward.
+    fn sample_sphere(&self, p: Vec3, center: Vec3, radius: f32, u: Vec2) -> Option<LightSample> {
+        let to_center = center - p;
+        let dc2 = to_center.length_squared();
+        if dc2 <= radius * radius {
+            return None;
+        }
+        let dc = dc2.sqrt();
+        let axis = to_center / dc;
+        let sin2_max = radius * radius / dc2;
+        let cos_max = (1.0 - sin2_max).max(0.0).sqrt();
+        let local = square_to_uniform_cone(u, cos_max);
+        let wi = Frame::from_normal(axis).to_world(local);
+        // Distance to the near intersection, with the discriminant clamped so
+        // that directions on the cone's rim (tangent rays) still land on it.
+        let b = wi.dot(to_center);
+        let disc = (radius * radius - (dc2 - b * b)).max(0.0);
+        let distance = b - disc.sqrt();
+        Some(LightSample {
+            wi,
+            l: self.radiance,
+            distance,
+            pdf: uniform_cone_pdf(local, cos_max),
+        })
+    }
+
+    pub(super) fn pdf_li(&self, p: Vec3, wi: Vec3, p_light: Vec3) -> f32 {
+        let normal = match &self.shape {
+            AreaShape::Triangle { normal, .. } | AreaShape::Rect { normal, .. } => *normal,
+            AreaShape::Sphere { center, radius } => {
+                let to_center = *center - p;
+                let dc2 = to_center.length_squared();
+                if dc2 <= radius * radius {
+                    return 0.0;
+                }
+                let cos_max = (1.0 - radius * radius / dc2).max(0.0).sqrt();
+                let cos = wi.dot(to_center / dc2.sqrt());
+                return uniform_cone_pdf(Vec3::new(0.0, 0.0, cos), cos_max);
+            }
+        };
+        let cos_light = -normal.dot(wi);
+        if cos_light <= 0.0 {
+            return 0.0;
+        }
+        (p_light - p).length_squared() / (cos_light * self.shape.area())
+    }
+
+    pub(super) fn power(&self) -> f32 {
+        PI * self.shape.area() * luminance(self.radiance)
+    }
+}

@@ -1,0 +1,153 @@
+//! All the lights of a scene, and how one is chosen for a light sample.
+
+use super::Light;
+
+const NONE: u32 = u32::MAX;
+
+/// The scene's lights. Delta lights are each sampled once per shading point
+/// (CS184: one sample per delta light); the others are chosen by power, so
+/// a lamp made of many triangles costs one sample, not one per triangle.
+#[derive(Clone, Debug, Default)]
+pub struct LightSet {
+    lights: Vec<Light>,
+    delta: Vec<u32>,
+    infinite: Vec<u32>,
+    /// Non-delta lights and the running sum of their selection probability.
+    sampled: Vec<u32>,
+    cdf: Vec<f32>,
+    /// Selection probability per light (0 for delta lights).
+    pmf: Vec<f32>,
+    /// Light index of each emissive primitive, `NONE` for the others.
+    prim_light: Vec<u32>,
+}
+
+impl LightSet {
+    /// Collects `lights`; `prim_light[i]` is `Some(light index)` for each
+    /// emissive primitive `i`. `scene_radius` sizes lights at infinity.
+    pub fn new(lights: Vec<Light>, prim_light: Vec<Option<u32>>, scene_radius: f32) -> Self {
+        let mut delta = Vec::new();
+        let mut infinite = Vec::new();
+        let mut sampled = Vec::new();
+        let mut weights = Vec::new();
+        for (i, light) in lights.iter().enumerate() {
+            if light.is_delta() {
+                delta.push(i as u32);
+                continue;
+            }
+            if light.is_infinite() {
+                infinite.push(i as u32);
+            }
+            sampled.push(i as u32);
+            weights.push(light.power(scene_radius).max(0.0));
+        }
+        let total: f32 = weights.iter().sum();
+        if total <= 0.0 || !total.is_finite() {
+            // No usable power figure: choose uniformly.
+            weights.iter_mut().for_each(|w| *w = 1.0);
+        }
+        let total: f32 = weights.iter().sum();
+        let mut pmf = vec![0.0; lights.len()];
+        let mut cdf = Vec::with_capacity(weights.len());
+        let mut running = 0.0;
+        for (&i, &w) in sampled.iter().zip(&weights) {
+            pmf[i as usize] = w / total;
+            running += w / total;
+            cdf.push(running);
+        }
+        Self {
+            lights,
+            delta,
+            infinite,
+            sampled,
+            cdf,
+            pmf,
+            prim_light: prim_light.into_iter().map(|l| l.unwrap_or(NONE)).collect(),
+        }
+    }
+
+    /// All lights.
+    pub fn lights(&self) -> &[Light] {
+        &self.lights
+    }
+
+    /// Whether the scene has no light at all.
+    pub fn is_empty(&self) -> bool {
+        self.lights.is_empty()
+    }
+
+    /// Delta lights (sampled once each).
+    pub fn delta_lights(&self) -> impl Iterator<Item = &Light> {
+        self.delta.iter().map(|&i| &self.lights[i as usize])
+    }
+
+    /// Indices of non-delta lights at infinity (seen by escaping rays).
+    pub fn infinite_lights(&self) -> impl Iterator<Item = u32> + '_ {
+        self.infinite.iter().copied()
+    }
+
+    /// Whether any non-delta light can be chosen by [`LightSet::choose`].
+    pub fn has_sampled_lights(&self) -> bool {
+        !self.sampled.is_empty()
+    }
+
+    /// Chooses a non-delta light by power: (light index, probability).
+    pub fn choose(&self, u: f32) -> Option<(u32, f32)> {
+        if self.sampled.is_empty() {
+            return None;
+        }
+        let k = self
+            .cdf
+            .partition_point(|&c| c <= u)
+            .min(self.sampled.len() - 1);
+        let i = self.sampled[k];
+        Some((i, self.pmf[i as usize]))
+    }
+
+    /// Probability that [`LightSet::choose`] picks light `i`.
+    pub fn pmf(&self, i: u32) -> f32 {
+        self.pmf[i as usize]
+    }
+
+    /// The light of emissive primitive `prim`, if it is one.
+    pub fn light_of_prim(&self, prim: u32) -> Option<u32> {
+        match self.prim_light.get(prim as usize) {
+            Some(&l) if l != NONE => Some(l),
+            _ => None,
+        }
+    }
+
+    /// Light `i`.
+    pub fn get(&self, i: u32) -> &Light {
+        &self.lights[i as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light::{AmbientLight, PointLight};
+    use glam::Vec3;
+
+    #[test]
+    fn lights_are_chosen_in_proportion_to_power() {
+        let sky = |r: f32| {
+            Light::Ambient(AmbientLight {
+                radiance: Vec3::splat(r),
+            })
+        };
+        let point = Light::Point(PointLight {
+            position: Vec3::ZERO,
+            intensity: Vec3::ONE,
+        });
+        let set = LightSet::new(vec![sky(1.0), point, sky(3.0)], vec![], 1.0);
+        assert_eq!(set.delta_lights().count(), 1);
+        assert!((set.pmf(0) - 0.25).abs() < 1e-6);
+        assert_eq!(set.pmf(1), 0.0);
+        assert!((set.pmf(2) - 0.75).abs() < 1e-6);
+        let n = 1000;
+        let picks_of_2 = (0..n)
+            .filter(|k| set.choose((*k as f32 + 0.5) / n as f32).unwrap().0 == 2)
+            .count();
+        assert_eq!(picks_of_2, 750);
+    }
+}
