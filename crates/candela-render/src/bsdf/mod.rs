@@ -1,1 +1,124 @@
 //! BSDFs in a local shading frame.
+//!
+//! # Conventions (fixed here, relied on everywhere)
+//!
+//! - **Frame**: directions are in the local shading frame of
+//!   [`crate::geometry::Frame`], whose +Z is the shading normal. Build it
+//!   from the surface's *outward* normal (the side the geometry defines).
+//! - **Directions**: `wo` points toward the viewer (where the path came
+//!   from), `wi` toward the light (where it continues); both point *away*
+//!   from the surface and are unit vectors. (Mitsuba's `si.wi` is our `wo`.)
+//! - **`f` excludes the cosine**: the integrator multiplies by |cos θi| =
+//!   `wi.z.abs()`. [`BsdfSample::weight`] is `f·|cos θi|/pdf`.
+//! - **Random numbers are arguments** (`u1` picks a lobe, `u2` the direction
+//!   within it), never drawn inside, so sampling is deterministic and
+//!   testable.
+//! - **Two-sided shading**: every BSDF accepts `wo` on either side. Opaque
+//!   BSDFs (diffuse, mirror, conductor) behave as if the frame were flipped
+//!   so that `wo.z > 0`, so a caller *may* flip the frame for them, but need
+//!   not. Dielectrics ([`Bsdf::Glass`], [`Bsdf::Refraction`]) read the side
+//!   of `wo` to know whether the path is entering (`wo.z > 0`, relative IOR
+//!   `ior`) or leaving (`wo.z < 0`, relative IOR `1 / ior`), so the caller
+//!   **must not flip** the frame for them. The safe rule: never flip.
+//! - **Radiance transport**: the path tracer carries radiance from lights to
+//!   the camera, so refraction scales by `1/η²` with η the relative IOR
+//!   (transmitted side over incident side of the light path as traced from
+//!   the camera); an adjoint (importance) transport would omit that factor.
+//! - **Delta lobes** (flag [`BsdfFlags::SPECULAR`]): `f` and `pdf` return
+//!   zero for every given pair; `sample` returns the one direction with
+//!   `f = weight / |cos θi|` and `pdf` the discrete probability of choosing
+//!   that lobe (1 for a single lobe), so `weight()` works uniformly.
+
+mod diffuse;
+#[cfg(test)]
+mod diffuse_tests;
+mod flags;
+#[cfg(test)]
+mod test_support;
+
+pub use flags::BsdfFlags;
+
+use glam::{Vec2, Vec3};
+
+/// One sampled scattering direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// The sampled direction toward the light, in the local frame.
+    pub wi: Vec3,
+    /// The BSDF value for (wo, wi), cosine excluded.
+    pub f: Vec3,
+    /// The density of `wi` per unit solid angle, or for a delta lobe the
+    /// discrete probability of having chosen it.
+    pub pdf: f32,
+    /// The kind of lobe that was sampled.
+    pub flags: BsdfFlags,
+}
+
+impl BsdfSample {
+    /// The throughput multiplier `f·|cos θi| / pdf`.
+    pub fn weight(&self) -> Vec3 {
+        self.f * (self.wi.z.abs() / self.pdf)
+    }
+
+    /// Whether the sample came from a delta lobe.
+    pub fn is_specular(&self) -> bool {
+        self.flags.is_specular()
+    }
+}
+
+/// The closed set of scattering models, as plain values: cheap to copy,
+/// `Sync`, and dispatched by `match` without virtual calls.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bsdf {
+    /// Lambertian reflection: f = albedo / π.
+    Diffuse {
+        /// Directional-hemispherical reflectance, per channel in [0, 1].
+        albedo: Vec3,
+    },
+}
+
+impl Bsdf {
+    /// The union of the flags of its lobes.
+    pub fn flags(&self) -> BsdfFlags {
+        match self {
+            Bsdf::Diffuse { .. } => diffuse::FLAGS,
+        }
+    }
+
+    /// The BSDF value for the pair (cosine excluded); zero for delta lobes.
+    pub fn f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        match *self {
+            Bsdf::Diffuse { albedo } => diffuse::f(albedo, wo, wi),
+        }
+    }
+
+    /// Samples `wi` given `wo`: `u1` selects a lobe (where there are
+    /// several), `u2` the direction. `None` when the sample carries no
+    /// energy (e.g. a direction below the surface), which ends the path.
+    pub fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
+        let _ = u1;
+        match *self {
+            Bsdf::Diffuse { albedo } => diffuse::sample(albedo, wo, u2),
+        }
+    }
+
+    /// The density per unit solid angle with which `sample` returns `wi`
+    /// (zero for delta lobes), for multiple importance sampling.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match *self {
+            Bsdf::Diffuse { .. } => diffuse::pdf(wo, wi),
+        }
+    }
+
+    /// A representative colour for albedo AOVs and denoisers.
+    pub fn albedo(&self) -> Vec3 {
+        match *self {
+            Bsdf::Diffuse { albedo } => albedo,
+        }
+    }
+}
+
+/// Whether two directions lie on the same side of the surface.
+fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
+    a.z * b.z > 0.0
+}

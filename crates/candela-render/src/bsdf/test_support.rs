@@ -1,0 +1,137 @@
+//! Checks every BSDF must pass, shared by the per-model tests.
+
+use glam::{DVec3, Vec2, Vec3};
+
+use super::Bsdf;
+use crate::sampling::chi2::Chi2Test;
+use crate::sampling::warp::{square_to_uniform_sphere, uniform_sphere_pdf};
+use crate::sampling::{Sampler, SamplerKind};
+
+/// Outgoing directions at θ = 0°, 30°, 60°, 85° and 89.5° (grazing), some at
+/// an azimuth off the axes, and the mirror images below the surface (the
+/// other side of a two-sided surface, or the inside of glass).
+pub(crate) fn test_directions() -> Vec<Vec3> {
+    let mut dirs = Vec::new();
+    for (theta_deg, phi) in [
+        (0.0f32, 0.0f32),
+        (30.0, 0.4),
+        (60.0, 2.0),
+        (85.0, -1.0),
+        (89.5, 0.0),
+    ] {
+        let (sin_t, cos_t) = theta_deg.to_radians().sin_cos();
+        let w = Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t);
+        dirs.push(w);
+        dirs.push(Vec3::new(w.x, w.y, -w.z));
+    }
+    dirs
+}
+
+/// Random numbers for the `i`-th test sample: (u1, u2).
+pub(crate) fn uniforms(sampler: &mut Sampler, i: u32) -> (f32, Vec2) {
+    sampler.start_pixel_sample(0, 0, i);
+    (sampler.next_1d(), sampler.next_2d())
+}
+
+/// Chi-square of `sample` against `pdf` at `wo` (delta samples count as
+/// failures: their directions are not part of the density).
+pub(crate) fn assert_chi2(name: &str, bsdf: &Bsdf, wo: Vec3) {
+    Chi2Test::sphere(&format!("{name} at wo = {wo:?}"))
+        .run(
+            |u| {
+                let s = bsdf.sample(wo, u[0], Vec2::new(u[1], u[2]))?;
+                (!s.is_specular()).then_some((s.wi, s.pdf))
+            },
+            |wi| bsdf.pdf(wo, wi),
+        )
+        .assert_ok();
+}
+
+/// Every returned sample agrees with `f` and `pdf`, is finite, and its
+/// weight is `f·|cos|/pdf`.
+pub(crate) fn assert_samples_consistent(bsdf: &Bsdf, wo: Vec3) {
+    let mut sampler = Sampler::new(SamplerKind::Independent, 17);
+    for i in 0..10_000 {
+        let (u1, u2) = uniforms(&mut sampler, i);
+        let Some(s) = bsdf.sample(wo, u1, u2) else {
+            continue;
+        };
+        assert!((s.wi.length() - 1.0).abs() < 1e-4, "{bsdf:?} {wo:?}: {s:?}");
+        assert!(s.pdf > 0.0 && s.pdf.is_finite(), "{bsdf:?} {wo:?}: {s:?}");
+        assert!(
+            s.f.is_finite() && s.f.cmpge(Vec3::ZERO).all(),
+            "{bsdf:?} {wo:?}: {s:?}"
+        );
+        if !s.is_specular() {
+            let (f, pdf) = (bsdf.f(wo, s.wi), bsdf.pdf(wo, s.wi));
+            assert!(
+                (f - s.f).abs().max_element() <= 1e-4 * f.max_element().max(1.0),
+                "{bsdf:?} {wo:?}: {s:?} vs f {f:?}"
+            );
+            assert!(
+                (pdf - s.pdf).abs() <= 1e-3 * pdf.max(1.0),
+                "{bsdf:?} {wo:?}: {s:?} vs pdf {pdf}"
+            );
+        }
+        let weight = s.weight();
+        let expected = s.f * s.wi.z.abs() / s.pdf;
+        assert!((weight - expected).abs().max_element() < 1e-5 * expected.max_element().max(1.0));
+    }
+}
+
+/// Mean and standard error of a Monte Carlo estimate from per-sample values.
+pub(crate) struct Estimate {
+    /// Sample mean per channel.
+    pub mean: Vec3,
+    /// Standard error of the mean per channel.
+    pub std_error: Vec3,
+}
+
+fn estimate(n: u32, mut value: impl FnMut(u32) -> Vec3) -> Estimate {
+    // Accumulated in f64: sum of squares minus squared mean cancels badly
+    // in f32 when the variance is tiny.
+    let (mut sum, mut sum_sq) = (DVec3::ZERO, DVec3::ZERO);
+    for i in 0..n {
+        let v = value(i).as_dvec3();
+        sum += v;
+        sum_sq += v * v;
+    }
+    let n = f64::from(n);
+    let mean = sum / n;
+    let variance = (sum_sq / n - mean * mean).max(DVec3::ZERO) * (n / (n - 1.0));
+    Estimate {
+        mean: mean.as_vec3(),
+        std_error: (variance / n).powf(0.5).as_vec3(),
+    }
+}
+
+/// The directional albedo ∫ f·|cos θi| dωi by the BSDF's own sampling.
+pub(crate) fn albedo_by_sampling(bsdf: &Bsdf, wo: Vec3, n: u32) -> Estimate {
+    let mut sampler = Sampler::new(SamplerKind::Independent, 23);
+    estimate(n, |i| {
+        let (u1, u2) = uniforms(&mut sampler, i);
+        bsdf.sample(wo, u1, u2).map_or(Vec3::ZERO, |s| s.weight())
+    })
+}
+
+/// The same integral with directions uniform on the sphere: independent of
+/// `sample` and `pdf`, so it checks `f` alone.
+pub(crate) fn albedo_by_uniform_sphere(bsdf: &Bsdf, wo: Vec3, n: u32) -> Estimate {
+    let mut sampler = Sampler::new(SamplerKind::Independent, 29);
+    estimate(n, |i| {
+        sampler.start_pixel_sample(0, 0, i);
+        let wi = square_to_uniform_sphere(sampler.next_2d());
+        bsdf.f(wo, wi) * wi.z.abs() / uniform_sphere_pdf(wi)
+    })
+}
+
+/// Asserts |a − b| ≤ 5 combined standard errors (+ a float slack), per channel.
+pub(crate) fn assert_estimates_agree(what: &str, a: &Estimate, b: Vec3, b_error: Vec3) {
+    let bound = 5.0 * (a.std_error * a.std_error + b_error * b_error).powf(0.5) + Vec3::splat(1e-4);
+    assert!(
+        (a.mean - b).abs().cmple(bound).all(),
+        "{what}: {:?} ± {:?} vs {b:?} ± {b_error:?}",
+        a.mean,
+        a.std_error
+    );
+}
