@@ -9,6 +9,7 @@
 pub mod framing;
 
 use crate::geometry::Ray;
+use crate::sampling::warp::square_to_concentric_disk;
 use glam::{Vec2, Vec3};
 
 /// A perspective camera for a `width` × `height` image.
@@ -88,7 +89,7 @@ impl Camera {
         // Thin lens: every ray through the lens point meets the pinhole ray on
         // the plane of focus.
         let focus = dir_cam * self.focal_distance;
-        let lens = concentric_disk(u_lens) * self.lens_radius;
+        let lens = square_to_concentric_disk(u_lens) * self.lens_radius;
         let origin_cam = Vec3::new(lens.x, lens.y, 0.0);
         let dir = self.to_world(focus - origin_cam).normalize();
         Ray::new(self.eye + self.right * lens.x + self.up * lens.y, dir)
@@ -97,23 +98,6 @@ impl Camera {
     fn to_world(&self, v: Vec3) -> Vec3 {
         self.right * v.x + self.up * v.y + self.forward * v.z
     }
-}
-
-/// Shirley–Chiu concentric map from the unit square to the unit disk.
-fn concentric_disk(u: Vec2) -> Vec2 {
-    let o = 2.0 * u - Vec2::ONE;
-    if o == Vec2::ZERO {
-        return Vec2::ZERO;
-    }
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, std::f32::consts::FRAC_PI_4 * (o.y / o.x))
-    } else {
-        (
-            o.y,
-            std::f32::consts::FRAC_PI_2 - std::f32::consts::FRAC_PI_4 * (o.x / o.y),
-        )
-    };
-    r * Vec2::new(theta.cos(), theta.sin())
 }
 
 #[cfg(test)]
@@ -169,16 +153,6 @@ mod tests {
             let r = c.generate_ray(film, u);
             let t = (focus - r.origin).dot(c.forward) / r.dir.dot(c.forward);
             assert!((r.at(t) - focus).length() < 1e-4);
-        }
-    }
-
-    #[test]
-    fn concentric_disk_stays_in_the_disk() {
-        for i in 0..=16 {
-            for j in 0..=16 {
-                let p = concentric_disk(Vec2::new(i as f32 / 16.0, j as f32 / 16.0));
-                assert!(p.length() <= 1.0 + 1e-6);
-            }
         }
     }
 }

@@ -1,0 +1,222 @@
+//! Scenes built in code for the estimator tests, and a helper that renders
+//! them and returns the image mean with its standard error.
+#![allow(dead_code)]
+
+use candela_render::camera::framing::CameraMode;
+use candela_render::integrator::IntegratorKind;
+use candela_render::render::{render, RenderSettings};
+use candela_render::scene::{Scene, SceneOptions};
+use candela_scene::{
+    BsdfDesc, CameraDesc, LightDesc, LightKind, MaterialDesc, MeshDesc, SceneDesc, SourceLoc,
+    SphereDesc,
+};
+use glam::{Mat4, Vec3};
+
+/// A unit icosphere subdivided `levels` times, its triangles wound so that
+/// the geometric normals point **inward**, with inward per-vertex normals:
+/// a closed room whose walls face its centre.
+pub fn inward_icosphere(levels: u32, radius: f32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let mut v: Vec<Vec3> = [
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
+    ]
+    .iter()
+    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
+    .collect();
+    let mut f: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..levels {
+        let mut cache = std::collections::HashMap::new();
+        let mut mid = |a: u32, b: u32, v: &mut Vec<Vec3>| {
+            let key = (a.min(b), a.max(b));
+            *cache.entry(key).or_insert_with(|| {
+                v.push((v[a as usize] + v[b as usize]).normalize());
+                v.len() as u32 - 1
+            })
+        };
+        let mut next = Vec::with_capacity(f.len() * 4);
+        for [a, b, c] in f {
+            let ab = mid(a, b, &mut v);
+            let bc = mid(b, c, &mut v);
+            let ca = mid(c, a, &mut v);
+            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        f = next;
+    }
+    // The faces above wind outward; swap two corners to face inward.
+    let tris = f.into_iter().map(|[a, b, c]| [a, c, b]).collect();
+    (v.into_iter().map(|p| p * radius).collect(), tris)
+}
+
+/// A material description.
+pub fn material(name: &str, bsdf: BsdfDesc, emission: Option<Vec3>) -> MaterialDesc {
+    MaterialDesc {
+        name: name.into(),
+        bsdf,
+        emission,
+        diffuse_texture: None,
+        loc: SourceLoc::default(),
+    }
+}
+
+/// A camera at `eye` looking down -Z with a 60° field of view.
+pub fn camera_at(eye: Vec3) -> CameraDesc {
+    CameraDesc {
+        name: "test".into(),
+        world_from_camera: Mat4::from_translation(eye),
+        xfov_deg: 60.0,
+        yfov_deg: 60.0,
+        znear: None,
+        zfar: None,
+        loc: SourceLoc::default(),
+    }
+}
+
+/// The white furnace: a closed room of albedo `albedo` whose walls all emit
+/// `le`, seen from its centre.
+pub fn furnace(albedo: f32, le: f32) -> SceneDesc {
+    // Flat facets, no shading normals: with bent normals a diffuse wall no
+    // longer conserves energy exactly, and the closed-form answer is lost.
+    let (positions, triangles) = inward_icosphere(2, 1.0);
+    let mesh = MeshDesc {
+        name: "room".into(),
+        positions,
+        triangles,
+        material: 0,
+        ..Default::default()
+    };
+    SceneDesc {
+        source: "furnace".into(),
+        cameras: vec![camera_at(Vec3::ZERO)],
+        meshes: vec![mesh],
+        materials: vec![material(
+            "wall",
+            BsdfDesc::Diffuse {
+                albedo: Vec3::splat(albedo),
+            },
+            Some(Vec3::splat(le)),
+        )],
+        ..Default::default()
+    }
+}
+
+/// pbrt's analytic scene: inside a unit sphere of albedo 0.5 with a point
+/// light of intensity π at its centre, the radiance is exactly 1 everywhere.
+pub fn analytic_sphere() -> SceneDesc {
+    SceneDesc {
+        source: "analytic".into(),
+        cameras: vec![camera_at(Vec3::new(0.0, 0.0, 0.3))],
+        spheres: vec![SphereDesc {
+            name: "room".into(),
+            center: Vec3::ZERO,
+            radius: 1.0,
+            material: 0,
+            loc: SourceLoc::default(),
+        }],
+        materials: vec![material(
+            "wall",
+            BsdfDesc::Diffuse {
+                albedo: Vec3::splat(0.5),
+            },
+            None,
+        )],
+        lights: vec![LightDesc {
+            name: "bulb".into(),
+            kind: LightKind::Point {
+                position: Vec3::ZERO,
+                intensity: Vec3::splat(std::f32::consts::PI),
+            },
+            loc: SourceLoc::default(),
+        }],
+        ..Default::default()
+    }
+}
+
+/// Mean luminance over all samples of a render, and its standard error
+/// (from the film's sums of squares: every sample is an independent
+/// estimate of the same constant when the scene is uniform).
+pub struct Estimate {
+    /// Sample mean.
+    pub mean: f64,
+    /// Standard error of the mean.
+    pub std_error: f64,
+    /// Samples that were NaN or infinite.
+    pub invalid: u64,
+}
+
+/// Renders `desc` from its file camera and pools every sample.
+pub fn estimate(desc: &SceneDesc, integrator: IntegratorKind, size: u32, spp: u32, seed: u64) -> Estimate {
+    let opts = SceneOptions {
+        width: size,
+        height: size,
+        camera_mode: CameraMode::File,
+        ..Default::default()
+    };
+    let scene = Scene::build(desc, &opts).expect("test scene builds");
+    let settings = RenderSettings {
+        spp,
+        seed,
+        integrator,
+        threads: 2,
+        ..Default::default()
+    };
+    let out = render(&scene, &settings, &|_| {}).expect("render runs");
+    let (mut n, mut sum, mut sum_sq) = (0u64, 0.0f64, 0.0f64);
+    for p in &out.film.pixels {
+        n += p.count as u64;
+        sum += p.lum;
+        sum_sq += p.lum_sq;
+    }
+    let mean = sum / n as f64;
+    let var = (sum_sq / n as f64 - mean * mean).max(0.0) * n as f64 / (n as f64 - 1.0);
+    Estimate {
+        mean,
+        std_error: (var / n as f64).sqrt(),
+        invalid: out.stats.invalid_samples,
+    }
+}
+
+/// Asserts `e.mean` is within `z` standard errors of `expected`, plus the
+/// f32 rounding of the sums (which matters only for zero-variance cases).
+pub fn assert_converges(label: &str, e: &Estimate, expected: f64, z: f64) {
+    assert_eq!(e.invalid, 0, "{label}: NaN or infinite samples");
+    let rounding = 1e-5 * expected.abs();
+    let dev = ((e.mean - expected).abs() - rounding).max(0.0) / e.std_error.max(1e-12);
+    assert!(
+        dev <= z,
+        "{label}: mean {:.5} ± {:.5} vs expected {expected:.5} ({dev:.2} standard errors)",
+        e.mean,
+        e.std_error
+    );
+}
