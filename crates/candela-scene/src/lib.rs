@@ -5,6 +5,102 @@
 //! named once in a [`Report`].
 #![warn(missing_docs)]
 
+mod collada;
 pub mod desc;
+mod error;
+mod report;
 
 pub use desc::*;
+pub use error::{ErrorKind, LoadError};
+pub use report::{Report, Warning};
+
+use std::path::{Path, PathBuf};
+
+/// How strictly to load.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// Turn every warning (an ignored element or feature) into an
+    /// [`ErrorKind::Unsupported`] error, for users who want to know that what
+    /// they render is exactly what the file says.
+    pub strict: bool,
+}
+
+/// A loaded scene and what the loader ignored on the way.
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    /// The scene, in Y-up world space.
+    pub scene: SceneDesc,
+    /// Ignored elements and features, each named once.
+    pub report: Report,
+}
+
+/// Loads a COLLADA (`.dae`) scene file.
+///
+/// Files over 512 MiB are refused before they are read, so a wrong path to a
+/// huge file fails fast.
+pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
+    let io =
+        |e: std::io::Error| LoadError::whole_file(path.to_path_buf(), ErrorKind::Io, e.to_string());
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if meta.len() > collada::MAX_FILE_BYTES {
+        return Err(LoadError::whole_file(
+            path.to_path_buf(),
+            ErrorKind::TooLarge,
+            format!(
+                "{} bytes exceeds the limit of {}",
+                meta.len(),
+                collada::MAX_FILE_BYTES
+            ),
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(io)?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let loc = collada_loc_of_byte(e.as_bytes(), e.utf8_error().valid_up_to());
+        LoadError {
+            loc: Some(loc),
+            ..LoadError::whole_file(
+                path.to_path_buf(),
+                ErrorKind::NotXml,
+                "not UTF-8 text".into(),
+            )
+        }
+    })?;
+    load_str(&text, path, opts)
+}
+
+/// Loads COLLADA text. `source` names the file in messages and is the base
+/// for relative texture paths.
+pub fn load_str(text: &str, source: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
+    collada::load_str(text, source, opts)
+}
+
+/// The built-in demo scene (`scenes/demo.dae`: a Cornell box with a diffuse
+/// and a mirror sphere), compiled into the library so the renderer always has
+/// something to show.
+pub fn demo_scene() -> Loaded {
+    const DEMO: &str = include_str!("../../../scenes/demo.dae");
+    let source = PathBuf::from("<built-in demo>");
+    // The file is part of this crate and tested to load; should that ever
+    // break, an empty scene with the error in its report is still returned
+    // rather than a panic.
+    load_str(DEMO, &source, &LoadOptions::default()).unwrap_or_else(|e| Loaded {
+        scene: SceneDesc {
+            source: source.clone(),
+            ..SceneDesc::default()
+        },
+        report: Report {
+            source,
+            warnings: vec![Warning {
+                loc: e.loc.unwrap_or_default(),
+                element: e.element,
+                message: e.message,
+                count: 1,
+            }],
+        },
+    })
+}
+
+fn collada_loc_of_byte(bytes: &[u8], byte: usize) -> SourceLoc {
+    let valid = std::str::from_utf8(&bytes[..byte]).unwrap_or("");
+    collada::loc_in(valid, byte)
+}

@@ -1,0 +1,98 @@
+//! The loader's error type: one located, classified problem per failed load.
+//!
+//! A loader stops at the first error it cannot recover from; everything it can
+//! recover from becomes a [`crate::Warning`] instead. Each class of problem has
+//! its own [`ErrorKind`] so that tests (and tools) can tell them apart without
+//! matching on message text.
+
+use crate::desc::SourceLoc;
+use std::fmt;
+use std::path::PathBuf;
+
+/// Why a scene failed to load. One variant per class of problem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ErrorKind {
+    /// The file could not be read.
+    Io,
+    /// The text is not well-formed XML.
+    NotXml,
+    /// Well-formed XML whose root element is not `<COLLADA>`.
+    NotCollada,
+    /// The file has a `<!DOCTYPE>` (DTDs and entities are refused outright).
+    Dtd,
+    /// A `#url` reference names no element, or an element of the wrong kind.
+    DanglingUrl,
+    /// A `count` (or the amount a count implies) disagrees with the data.
+    CountMismatch,
+    /// An index in `<p>` points past the end of its source.
+    IndexOutOfRange,
+    /// Text that should be a number is not one.
+    BadNumber,
+    /// A number is infinite or NaN.
+    NonFinite,
+    /// A polygon with fewer than three vertices.
+    BadPolygon,
+    /// A camera with an impossible field of view, aspect or transform.
+    DegenerateCamera,
+    /// Nesting deeper than the loader accepts.
+    TooDeep,
+    /// A file or array larger than the loader accepts.
+    TooLarge,
+    /// A required element or attribute is absent.
+    MissingElement,
+    /// A value that parses but is outside its domain (unknown `up_axis`,
+    /// non-positive radius, zero rotation axis, ...).
+    BadValue,
+    /// An unsupported feature, reported as an error because of strict mode.
+    Unsupported,
+}
+
+/// A located loading error. `Display` prints one line:
+/// `path:line:col: <element>: message`.
+#[derive(Clone, Debug, thiserror::Error)]
+#[error("{}", self.one_line())]
+pub struct LoadError {
+    /// The scene file (as given by the caller).
+    pub file: PathBuf,
+    /// Where in the file, when the problem has a place (I/O errors do not).
+    pub loc: Option<SourceLoc>,
+    /// The element at fault, written like `<float_array id="x">`; may be empty.
+    pub element: String,
+    /// The class of problem.
+    pub kind: ErrorKind,
+    /// What is wrong, for a human.
+    pub message: String,
+}
+
+impl LoadError {
+    /// An error that has no place in the file (reading it failed, or it is too big).
+    pub(crate) fn whole_file(file: PathBuf, kind: ErrorKind, message: String) -> Self {
+        Self {
+            file,
+            loc: None,
+            element: String::new(),
+            kind,
+            message,
+        }
+    }
+
+    fn one_line(&self) -> String {
+        let mut s = self.file.display().to_string();
+        if let Some(loc) = self.loc {
+            s.push_str(&format!(":{loc}"));
+        }
+        if !self.element.is_empty() {
+            s.push_str(&format!(": {}", self.element));
+        }
+        // Messages never span lines: the error is meant for one line of a log.
+        let message = self.message.replace(['\n', '\r'], " ");
+        s.push_str(&format!(": {message}"));
+        s
+    }
+}
+
+impl fmt::Display for ErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Debug::fmt(self, f)
+    }
+}
