@@ -1,3 +1,15 @@
-//! Ray–shape intersection: triangles and spheres.
+//! Ray–shape intersection: triangles and spheres, and the surface points
+//! with error bounds from which new rays are spawned without self-hits.
 
-pub mod triangle;
+mod sphere;
+mod surface;
+mod triangle;
+
+pub use sphere::{intersect_sphere, sphere_surface_point, sphere_uv};
+pub use surface::{gamma, offset_ray_origin, spawn_ray, SurfacePoint};
+pub use triangle::{intersect_triangle, triangle_surface_point, TriangleHit, TriangleRay};
+
+#[cfg(test)]
+mod tests;
+#[cfg(test)]
+mod watertight_tests;

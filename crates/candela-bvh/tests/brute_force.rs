@@ -1,0 +1,220 @@
+//! The BVH against brute force, for every strategy and degenerate inputs.
+//!
+//! Primitives are the boxes themselves, intersected in f64; rays either aim
+//! at an interior point of a random box (so most hit something) or are
+//! random. Closest-hit must return the brute-force distance and any-hit the
+//! brute-force verdict, for every ray.
+
+use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, RayBoxQuery, TraversalStats};
+use glam::Vec3;
+
+/// SplitMix64: a seeded generator, so every failure reproduces.
+struct Rng(u64);
+impl Rng {
+    fn u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn f32(&mut self) -> f32 {
+        (self.u64() >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.f32()
+    }
+    fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
+        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
+    }
+}
+
+/// Entry distance of the ray into the box in f64 (`t >= 0`), if it hits.
+fn box_hit(o: Vec3, d: Vec3, b: &Aabb, t_max: f32) -> Option<f32> {
+    let (o, d) = (o.as_dvec3(), d.as_dvec3());
+    let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
+    let (mut near, mut far) = (0.0f64, t_max as f64);
+    for a in 0..3 {
+        if d[a] == 0.0 {
+            if o[a] < lo[a] || o[a] > hi[a] {
+                return None;
+            }
+            continue;
+        }
+        let (t0, t1) = ((lo[a] - o[a]) / d[a], (hi[a] - o[a]) / d[a]);
+        near = near.max(t0.min(t1));
+        far = far.min(t0.max(t1));
+    }
+    (near <= far && near < t_max as f64).then_some(near as f32)
+}
+
+fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
+    let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
+    for strategy in [
+        BuildStrategy::Sah,
+        BuildStrategy::Median,
+        BuildStrategy::None,
+    ] {
+        for max_leaf in [1, 4, 8] {
+            let opts = BuildOptions {
+                max_leaf_size: max_leaf,
+                ..BuildOptions::with_strategy(strategy)
+            };
+            let bvh = Bvh::build(boxes, &centroids, opts);
+            if let Err(e) = bvh.validate(boxes) {
+                panic!("{label} {strategy:?}/{max_leaf}: {e}");
+            }
+            let order = bvh.primitive_order();
+            let world = bvh.bounds();
+            for k in 0..rays {
+                let o = if world.is_empty() {
+                    Vec3::ZERO
+                } else {
+                    world.center() + world.extent().max(Vec3::ONE) * rng.vec(-1.5, 1.5)
+                };
+                let target = if boxes.is_empty() || k % 4 == 3 {
+                    o + rng.vec(-1.0, 1.0)
+                } else {
+                    let b = boxes[rng.u64() as usize % boxes.len()];
+                    b.min + (b.max - b.min) * rng.vec(0.05, 0.95)
+                };
+                let d = (target - o).normalize_or(Vec3::X);
+                let t_max = if k % 5 == 4 {
+                    rng.range(0.0, 3.0)
+                } else {
+                    f32::INFINITY
+                };
+                let brute = boxes
+                    .iter()
+                    .filter_map(|b| box_hit(o, d, b, t_max))
+                    .reduce(f32::min);
+                let q = RayBoxQuery::new(o, d);
+                let mut stats = TraversalStats::default();
+                let got = bvh.closest_hit(&q, t_max, &mut stats, |slot, tm| {
+                    box_hit(o, d, &boxes[order[slot as usize] as usize], tm).filter(|&t| t < tm)
+                });
+                assert_eq!(
+                    got.map(|g| g.1),
+                    brute,
+                    "{label} {strategy:?}/{max_leaf} ray {k}: closest hit"
+                );
+                assert!(
+                    stats.prims_tested as usize <= boxes.len(),
+                    "{label}: a primitive tested twice"
+                );
+                let any = bvh.any_hit(&q, t_max, &mut (), |slot, tm| {
+                    box_hit(o, d, &boxes[order[slot as usize] as usize], tm).filter(|&t| t < tm)
+                });
+                assert_eq!(
+                    any,
+                    brute.is_some(),
+                    "{label} {strategy:?}/{max_leaf} ray {k}: any hit"
+                );
+            }
+        }
+    }
+}
+
+fn random_boxes(rng: &mut Rng, n: usize, size: f32) -> Vec<Aabb> {
+    (0..n)
+        .map(|_| {
+            let c = rng.vec(-10.0, 10.0);
+            let h = rng.vec(0.0, size);
+            Aabb::new(c - h, c + h)
+        })
+        .collect()
+}
+
+#[test]
+fn random_scenes_match_brute_force() {
+    let mut rng = Rng(1);
+    for n in [1, 2, 3, 7, 31, 200, 1500] {
+        let boxes = random_boxes(&mut rng, n, 1.0);
+        check(&boxes, &mut rng, 150, &format!("random n={n}"));
+    }
+}
+
+#[test]
+fn parallel_build_matches_brute_force() {
+    let mut rng = Rng(2);
+    let boxes = random_boxes(&mut rng, 20_000, 0.3);
+    let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
+    let bvh = Bvh::build(&boxes, &centroids, BuildOptions::default());
+    bvh.validate(&boxes).unwrap();
+    assert!(
+        bvh.depth() < 40,
+        "depth {} for 20k random boxes",
+        bvh.depth()
+    );
+    check(&boxes, &mut rng, 100, "20k boxes");
+}
+
+#[test]
+fn empty_input() {
+    let bvh = Bvh::build(&[], &[], BuildOptions::default());
+    assert!(bvh.nodes().is_empty());
+    bvh.validate(&[]).unwrap();
+    let q = RayBoxQuery::new(Vec3::ZERO, Vec3::X);
+    assert!(bvh
+        .closest_hit(&q, f32::INFINITY, &mut (), |_, _| Some(1.0))
+        .is_none());
+    check(&[], &mut Rng(3), 10, "empty");
+}
+
+#[test]
+fn coincident_centroids() {
+    let mut rng = Rng(4);
+    // Nested boxes around one centre: no split plane separates them.
+    let boxes: Vec<Aabb> = (0..100)
+        .map(|_| {
+            let h = rng.vec(0.1, 2.0);
+            Aabb::new(Vec3::splat(1.0) - h, Vec3::splat(1.0) + h)
+        })
+        .collect();
+    check(&boxes, &mut rng, 100, "coincident");
+    let same = vec![Aabb::new(Vec3::ZERO, Vec3::ONE); 5000];
+    check(&same, &mut rng, 20, "identical");
+}
+
+#[test]
+fn flat_boxes() {
+    let mut rng = Rng(5);
+    let boxes: Vec<Aabb> = (0..300)
+        .map(|i| {
+            let c = rng.vec(-5.0, 5.0);
+            let mut h = rng.vec(0.2, 1.0);
+            h[i % 3] = 0.0;
+            Aabb::new(c - h, c + h)
+        })
+        .collect();
+    check(&boxes, &mut rng, 200, "flat");
+}
+
+#[test]
+fn huge_boxes_among_small_ones() {
+    let mut rng = Rng(6);
+    let mut boxes = random_boxes(&mut rng, 300, 0.5);
+    boxes.push(Aabb::new(Vec3::splat(-1e30), Vec3::splat(1e30)));
+    boxes.push(Aabb::new(
+        Vec3::new(-1e30, -1.0, -1.0),
+        Vec3::new(1e30, 1.0, 1.0),
+    ));
+    let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
+    for s in [BuildStrategy::Sah, BuildStrategy::Median] {
+        let bvh = Bvh::build(&boxes, &centroids, BuildOptions::with_strategy(s));
+        bvh.validate(&boxes).unwrap();
+        // Every ray starts inside the first huge box, so any-hit is always true.
+        let order = bvh.primitive_order();
+        for _ in 0..100 {
+            let (o, d) = (
+                rng.vec(-20.0, 20.0),
+                rng.vec(-1.0, 1.0).normalize_or(Vec3::Y),
+            );
+            let q = RayBoxQuery::new(o, d);
+            let hit = bvh.any_hit(&q, f32::INFINITY, &mut (), |slot, tm| {
+                box_hit(o, d, &boxes[order[slot as usize] as usize], tm)
+            });
+            assert!(hit);
+        }
+    }
+}

@@ -1,0 +1,228 @@
+//! The scene-level acceleration structure: one BVH over all triangles and
+//! spheres, answering closest-hit and shadow queries.
+//!
+//! Primitive ids are stable and independent of the BVH's internal order:
+//! triangles are `0 .. n_tri` in input order, spheres follow in input order.
+//! Primitive data is stored in BVH leaf order, so a leaf's primitives are
+//! adjacent in memory. The hit record is kept small; shading data (normals,
+//! UVs, error bounds) is computed later from it by the caller with
+//! [`crate::shape::triangle_surface_point`] or
+//! [`crate::shape::sphere_surface_point`].
+
+use crate::geometry::Ray;
+use crate::shape::{intersect_sphere, intersect_triangle, sphere_uv, TriangleRay};
+use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, RayBoxQuery, StatsSink};
+use glam::Vec3;
+use std::time::Instant;
+
+pub use candela_bvh::TraversalStats;
+
+#[cfg(test)]
+mod tests;
+
+/// A closest hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Ray parameter.
+    pub t: f32,
+    /// Primitive id (triangles first, then spheres; see the module docs).
+    pub prim: u32,
+    /// Triangle: barycentric weight of `v1`. Sphere: `u = phi / 2pi` around
+    /// +Y, a texture coordinate (the normal is `(p - center) / radius`).
+    pub b1: f32,
+    /// Triangle: barycentric weight of `v2`. Sphere: `v = theta / pi` from +Y.
+    pub b2: f32,
+}
+
+/// Why an acceleration structure could not be built.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum AccelError {
+    /// A triangle refers to a vertex that does not exist.
+    #[error("triangle {triangle} refers to vertex {index}, but there are {vertices} vertices")]
+    IndexOutOfRange {
+        /// Offending triangle.
+        triangle: usize,
+        /// Offending index.
+        index: u32,
+        /// Number of vertices.
+        vertices: usize,
+    },
+}
+
+/// Size and cost figures of a built structure, for reports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AccelInfo {
+    /// Wall-clock build time in seconds (BVH and primitive reordering).
+    pub build_seconds: f64,
+    /// Number of BVH nodes.
+    pub nodes: usize,
+    /// BVH depth.
+    pub depth: u32,
+    /// Bytes held by the BVH nodes and order.
+    pub bvh_bytes: usize,
+    /// Bytes held in total (BVH plus the reordered primitive data).
+    pub total_bytes: usize,
+}
+
+/// One primitive in leaf order: triangle vertices, or a sphere stored as
+/// `[center, (radius, 0, 0), 0]`; `id >= n_tri` marks a sphere.
+#[derive(Clone, Copy, Debug)]
+struct Prim {
+    v: [Vec3; 3],
+    id: u32,
+}
+
+/// Triangles and spheres behind one BVH. Immutable and `Sync`: share it
+/// between render threads by reference.
+#[derive(Clone, Debug)]
+pub struct Accel {
+    bvh: Bvh,
+    prims: Vec<Prim>,
+    n_tri: u32,
+    info: AccelInfo,
+}
+
+impl Accel {
+    /// Builds over triangle soup and spheres `(center, radius)`.
+    pub fn build(
+        triangles: &[[Vec3; 3]],
+        spheres: &[(Vec3, f32)],
+        strategy: BuildStrategy,
+    ) -> Self {
+        let start = Instant::now();
+        let mut boxes: Vec<Aabb> = Vec::with_capacity(triangles.len() + spheres.len());
+        boxes.extend(triangles.iter().map(|t| Aabb::from_points(t)));
+        boxes.extend(
+            spheres
+                .iter()
+                .map(|&(c, r)| Aabb::new(c - Vec3::splat(r.abs()), c + Vec3::splat(r.abs()))),
+        );
+        let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
+        let bvh = Bvh::build(&boxes, &centroids, BuildOptions::with_strategy(strategy));
+        drop((boxes, centroids));
+        let n_tri = triangles.len() as u32;
+        let prims: Vec<Prim> = bvh
+            .primitive_order()
+            .iter()
+            .map(|&id| match triangles.get(id as usize) {
+                Some(t) => Prim { v: *t, id },
+                None => {
+                    let (c, r) = spheres[(id - n_tri) as usize];
+                    Prim {
+                        v: [c, Vec3::new(r.abs(), 0.0, 0.0), Vec3::ZERO],
+                        id,
+                    }
+                }
+            })
+            .collect();
+        let info = AccelInfo {
+            build_seconds: start.elapsed().as_secs_f64(),
+            nodes: bvh.nodes().len(),
+            depth: bvh.depth(),
+            bvh_bytes: bvh.bytes(),
+            total_bytes: bvh.bytes() + prims.len() * std::mem::size_of::<Prim>(),
+        };
+        Self {
+            bvh,
+            prims,
+            n_tri,
+            info,
+        }
+    }
+
+    /// Builds over an indexed mesh (`indices` name three `positions` each).
+    pub fn build_indexed(
+        positions: &[Vec3],
+        indices: &[[u32; 3]],
+        spheres: &[(Vec3, f32)],
+        strategy: BuildStrategy,
+    ) -> Result<Self, AccelError> {
+        let triangles = indices
+            .iter()
+            .enumerate()
+            .map(|(triangle, idx)| {
+                let vertex = |i: u32| {
+                    positions
+                        .get(i as usize)
+                        .copied()
+                        .ok_or(AccelError::IndexOutOfRange {
+                            triangle,
+                            index: i,
+                            vertices: positions.len(),
+                        })
+                };
+                Ok([vertex(idx[0])?, vertex(idx[1])?, vertex(idx[2])?])
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Self::build(&triangles, spheres, strategy))
+    }
+
+    /// Build time, node count, depth and memory.
+    pub fn info(&self) -> AccelInfo {
+        self.info
+    }
+
+    /// The underlying BVH (for validation and statistics).
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
+    /// Number of triangles; sphere ids start here.
+    pub fn triangle_count(&self) -> u32 {
+        self.n_tri
+    }
+
+    /// Closest hit with `t` in `(0, ray.t_max)`.
+    pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        self.intersect_counted(ray, &mut ())
+    }
+
+    /// True if anything lies on the ray with `t` in `(0, ray.t_max)`.
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        self.occluded_counted(ray, &mut ())
+    }
+
+    /// [`Accel::intersect`], adding node visits and primitive tests to `stats`
+    /// (pass a per-thread [`TraversalStats`]; `&mut ()` counts nothing).
+    #[inline]
+    pub fn intersect_counted<S: StatsSink>(&self, ray: &Ray, stats: &mut S) -> Option<Hit> {
+        let q = RayBoxQuery::new(ray.origin, ray.dir);
+        let tri_ray = TriangleRay::new(ray.origin, ray.dir);
+        let mut bary = (0.0, 0.0);
+        let (slot, t) = self.bvh.closest_hit(&q, ray.t_max, stats, |slot, t_max| {
+            let p = &self.prims[slot as usize];
+            if p.id < self.n_tri {
+                let h = intersect_triangle(&tri_ray, &p.v, t_max)?;
+                bary = (h.b1, h.b2);
+                Some(h.t)
+            } else {
+                intersect_sphere(ray.origin, ray.dir, p.v[0], p.v[1].x, t_max)
+            }
+        })?;
+        let p = &self.prims[slot as usize];
+        if p.id >= self.n_tri {
+            bary = sphere_uv(p.v[0], ray.at(t));
+        }
+        Some(Hit {
+            t,
+            prim: p.id,
+            b1: bary.0,
+            b2: bary.1,
+        })
+    }
+
+    /// [`Accel::occluded`] with statistics.
+    #[inline]
+    pub fn occluded_counted<S: StatsSink>(&self, ray: &Ray, stats: &mut S) -> bool {
+        let q = RayBoxQuery::new(ray.origin, ray.dir);
+        let tri_ray = TriangleRay::new(ray.origin, ray.dir);
+        self.bvh.any_hit(&q, ray.t_max, stats, |slot, t_max| {
+            let p = &self.prims[slot as usize];
+            if p.id < self.n_tri {
+                intersect_triangle(&tri_ray, &p.v, t_max).map(|h| h.t)
+            } else {
+                intersect_sphere(ray.origin, ray.dir, p.v[0], p.v[1].x, t_max)
+            }
+        })
+    }
+}

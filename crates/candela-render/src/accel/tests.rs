@@ -1,0 +1,190 @@
+//! The accelerated queries against brute force over every primitive, for
+//! every build strategy, on seeded random scenes and degenerate inputs.
+
+use super::*;
+use crate::shape::intersect_sphere;
+
+struct Rng(u64);
+impl Rng {
+    fn f32(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
+        Vec3::new(self.f32(), self.f32(), self.f32()) * (hi - lo) + Vec3::splat(lo)
+    }
+}
+
+/// Closest hit by testing every primitive: (t, id).
+fn brute(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], ray: &Ray) -> Option<(f32, u32)> {
+    let tr = TriangleRay::new(ray.origin, ray.dir);
+    let mut best: Option<(f32, u32)> = None;
+    let mut t_max = ray.t_max;
+    let ts = tris
+        .iter()
+        .map(|t| intersect_triangle(&tr, t, t_max).map(|h| h.t))
+        .collect::<Vec<_>>();
+    for (i, t) in ts.into_iter().enumerate() {
+        if let Some(t) = t.filter(|&t| t < t_max) {
+            t_max = t;
+            best = Some((t, i as u32));
+        }
+    }
+    for (j, &(c, r)) in spheres.iter().enumerate() {
+        if let Some(t) = intersect_sphere(ray.origin, ray.dir, c, r, t_max) {
+            t_max = t;
+            best = Some((t, (tris.len() + j) as u32));
+        }
+    }
+    best
+}
+
+/// `clip` also tests finite `t_max`; off for scenes whose primitives are so
+/// large that their f32 hit distance is only known to about 1e-2 (then a hit
+/// just before `t_max` may truly lie beyond it, and the BVH rightly prunes it).
+fn check(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], rng: &mut Rng, label: &str, clip: bool) {
+    for strategy in [
+        BuildStrategy::Sah,
+        BuildStrategy::Median,
+        BuildStrategy::None,
+    ] {
+        let accel = Accel::build(tris, spheres, strategy);
+        let mut boxes: Vec<Aabb> = tris.iter().map(|t| Aabb::from_points(t)).collect();
+        boxes.extend(
+            spheres
+                .iter()
+                .map(|&(c, r)| Aabb::new(c - Vec3::splat(r), c + Vec3::splat(r))),
+        );
+        accel
+            .bvh()
+            .validate(&boxes)
+            .unwrap_or_else(|e| panic!("{label} {strategy:?}: {e}"));
+        let mut stats = TraversalStats::default();
+        let mut hits = 0;
+        for k in 0..500 {
+            let o = rng.vec(-12.0, 12.0);
+            let target = rng.vec(-8.0, 8.0);
+            let mut ray = Ray::new(o, (target - o).normalize());
+            if clip && k % 4 == 0 {
+                ray.t_max = rng.f32() * 15.0;
+            }
+            let want = brute(tris, spheres, &ray);
+            let got = accel.intersect_counted(&ray, &mut stats);
+            hits += got.is_some() as u64;
+            // Equal distances; ids equal unless two primitives tie exactly.
+            assert_eq!(
+                got.map(|h| h.t),
+                want.map(|w| w.0),
+                "{label} {strategy:?} ray {k}: {ray:?} {want:?}"
+            );
+            if let (Some(g), Some(w)) = (got, want) {
+                if g.prim != w.1 {
+                    // A tie: the reported primitive alone gives the same distance.
+                    let alone = match tris.get(g.prim as usize) {
+                        Some(t) => brute(std::slice::from_ref(t), &[], &ray),
+                        None => brute(&[], &spheres[g.prim as usize - tris.len()..][..1], &ray),
+                    };
+                    assert_eq!(
+                        alone.map(|a| a.0),
+                        Some(g.t),
+                        "{label} {strategy:?} ray {k}: id"
+                    );
+                }
+            }
+            assert_eq!(
+                accel.occluded(&ray),
+                want.is_some(),
+                "{label} {strategy:?} ray {k} occluded"
+            );
+        }
+        assert!(stats.prims_tested >= hits && stats.nodes_visited >= hits.min(1));
+    }
+}
+
+fn random_triangles(rng: &mut Rng, n: usize, size: f32) -> Vec<[Vec3; 3]> {
+    (0..n)
+        .map(|_| {
+            let c = rng.vec(-8.0, 8.0);
+            [
+                c + rng.vec(-size, size),
+                c + rng.vec(-size, size),
+                c + rng.vec(-size, size),
+            ]
+        })
+        .collect()
+}
+
+#[test]
+fn random_scenes_match_brute_force() {
+    let mut rng = Rng(31);
+    for (nt, ns) in [(1, 0), (0, 1), (5, 3), (100, 10), (2000, 20), (6000, 0)] {
+        let tris = random_triangles(&mut rng, nt, 1.0);
+        let spheres: Vec<(Vec3, f32)> = (0..ns)
+            .map(|_| (rng.vec(-8.0, 8.0), rng.f32() * 2.0))
+            .collect();
+        check(
+            &tris,
+            &spheres,
+            &mut rng,
+            &format!("{nt} tris, {ns} spheres"),
+            true,
+        );
+    }
+}
+
+#[test]
+fn degenerate_scenes_match_brute_force() {
+    let mut rng = Rng(32);
+    check(&[], &[], &mut rng, "empty", true);
+    let same = vec![[Vec3::ZERO, Vec3::X * 3.0, Vec3::Y * 3.0]; 50];
+    check(&same, &[], &mut rng, "identical triangles", true);
+    // Axis-aligned flat triangles (zero-thickness boxes) and a huge one.
+    let mut flat: Vec<[Vec3; 3]> = (0..200)
+        .map(|_| {
+            let c = rng.vec(-8.0, 8.0);
+            [
+                c,
+                c + Vec3::new(rng.f32(), 0.0, 0.0),
+                c + Vec3::new(0.0, rng.f32(), 0.0),
+            ]
+        })
+        .collect();
+    check(&flat, &[], &mut rng, "flat", true);
+    flat.push([
+        Vec3::new(-1e6, -1e6, 0.5),
+        Vec3::new(1e6, -1e6, 0.5),
+        Vec3::new(0.0, 1e6, 0.5),
+    ]);
+    check(
+        &flat,
+        &[(Vec3::ZERO, 1e4)],
+        &mut rng,
+        "flat and huge",
+        false,
+    );
+    let nested: Vec<(Vec3, f32)> = (1..30).map(|i| (Vec3::ONE, i as f32 * 0.3)).collect();
+    check(&[], &nested, &mut rng, "concentric spheres", true);
+}
+
+#[test]
+fn indexed_build_reports_bad_indices() {
+    let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
+    let err =
+        Accel::build_indexed(&p, &[[0, 1, 2], [0, 1, 7]], &[], BuildStrategy::Sah).unwrap_err();
+    assert_eq!(
+        err,
+        AccelError::IndexOutOfRange {
+            triangle: 1,
+            index: 7,
+            vertices: 3
+        }
+    );
+    let ok = Accel::build_indexed(&p, &[[0, 1, 2]], &[], BuildStrategy::Sah).unwrap();
+    let hit = ok
+        .intersect(&Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z))
+        .unwrap();
+    assert_eq!((hit.t, hit.prim, hit.b1, hit.b2), (1.0, 0, 0.25, 0.25));
+}
