@@ -39,10 +39,44 @@ pub struct RenderArgs {
     /// Scene file (.dae). Omit it to render the built-in demo scene.
     pub scene: Option<PathBuf>,
 
-    /// Samples (camera rays) per pixel.
-    #[arg(short = 's', long = "spp", default_value_t = 1, value_name = "N",
+    /// Samples (camera paths) per pixel.
+    #[arg(short = 's', long = "spp", default_value_t = 16, value_name = "N",
           value_parser = clap::value_parser!(u32).range(1..))]
     pub spp: u32,
+
+    /// Light samples per area light at each path vertex (one per delta light).
+    #[arg(short = 'l', long = "light-samples", default_value_t = 1, value_name = "N")]
+    pub light_samples: u32,
+
+    /// Maximum number of bounces: 0 emitters seen directly, 1 direct lighting,
+    /// 2 one indirect bounce, ...
+    #[arg(short = 'm', long = "max-depth", default_value_t = 5, value_name = "N")]
+    pub max_depth: u32,
+
+    /// 1: add the light of every bounce up to -m; 0: only light after exactly -m bounces.
+    #[arg(short = 'o', long = "accumulate", default_value_t = 1, value_name = "0|1",
+          value_parser = clap::value_parser!(u8).range(0..=1))]
+    pub accumulate: u8,
+
+    /// Direct lighting by uniform hemisphere sampling (no light sampling).
+    #[arg(short = 'H', long = "hemisphere", conflicts_with = "light_only")]
+    pub hemisphere: bool,
+
+    /// Direct lighting by light sampling only (no MIS with BSDF sampling).
+    #[arg(long = "light-only")]
+    pub light_only: bool,
+
+    /// Only light that reached the camera after at most one bounce.
+    #[arg(long, conflicts_with = "indirect_only")]
+    pub direct_only: bool,
+
+    /// Only light that reached the camera after two or more bounces.
+    #[arg(long)]
+    pub indirect_only: bool,
+
+    /// Disable Russian roulette (paths run to -m).
+    #[arg(long)]
+    pub no_roulette: bool,
 
     /// Number of render threads (default: all cores).
     #[arg(short = 't', long = "threads", value_name = "N")]
@@ -64,6 +98,10 @@ pub struct RenderArgs {
     /// Shade by surface normal (colour = n * 0.5 + 0.5): the CS184 Part 1 view.
     #[arg(long)]
     pub normals: bool,
+
+    /// Sample sequence: Owen-scrambled Sobol (lower noise) or independent random.
+    #[arg(long, value_enum, default_value_t = SamplerArg::Sobol)]
+    pub sampler: SamplerArg,
 
     /// Where the camera comes from: the CS184 orbit framing or the file's camera.
     #[arg(long, value_enum, default_value_t = CameraArg::Cs184)]
@@ -89,6 +127,15 @@ pub enum CameraArg {
     Cs184,
     /// The literal COLLADA camera.
     File,
+}
+
+/// `--sampler` values.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SamplerArg {
+    /// Owen-scrambled Sobol points.
+    Sobol,
+    /// Independent uniform random numbers.
+    Independent,
 }
 
 /// `--bvh` values.

@@ -1,12 +1,13 @@
 //! `candela [flags] [scene.dae]`: load, build, render, write.
 
-use crate::args::{BvhArg, CameraArg, RenderArgs};
+use crate::args::{BvhArg, CameraArg, RenderArgs, SamplerArg};
 use crate::progress::samples_bar;
 use anyhow::{Context, Result};
 use candela_image::{write_exr, write_png, ExrLayers, RgbImage, ToneMap};
-use candela_render::accel::BvhStrategy;
+use candela_bvh::BuildStrategy;
 use candela_render::camera::framing::CameraMode;
-use candela_render::integrator::IntegratorKind;
+use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
+use candela_render::sampling::SamplerKind;
 use candela_render::render::{render, RenderOutput, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{LoadOptions, Loaded};
@@ -45,19 +46,33 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             CameraArg::File => CameraMode::File,
         },
         bvh: match args.bvh {
-            BvhArg::Sah => BvhStrategy::Sah,
-            BvhArg::Median => BvhStrategy::Median,
-            BvhArg::None => BvhStrategy::None,
+            BvhArg::Sah => BuildStrategy::Sah,
+            BvhArg::Median => BuildStrategy::Median,
+            BvhArg::None => BuildStrategy::None,
         },
     };
     let scene = Scene::build(&desc, &opts)
         .with_context(|| format!("cannot render {}", desc.source.display()))?;
+    if !args.quiet {
+        for what in &scene.unsupported {
+            eprintln!("candela: warning: {}: not supported yet: {what}", desc.source.display());
+        }
+        if !args.normals && scene.lights.is_empty() {
+            eprintln!(
+                "candela: warning: {}: the scene has no lights; the image will be black (try --normals)",
+                desc.source.display()
+            );
+        }
+    }
     let settings = RenderSettings {
         spp: args.spp,
         seed: args.seed,
-        integrator: IntegratorKind::Normals,
+        integrator: integrator(args),
+        sampler: match args.sampler {
+            SamplerArg::Sobol => SamplerKind::Sobol,
+            SamplerArg::Independent => SamplerKind::Independent,
+        },
         threads: args.threads.unwrap_or(0),
-        ..Default::default()
     };
     let total = width as u64 * height as u64 * args.spp as u64;
     let bar = samples_bar(total, args.quiet);
@@ -69,6 +84,35 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         eprintln!("candela: wrote {}", args.output.display());
     }
     Ok(())
+}
+
+/// The integrator the flags ask for.
+fn integrator(args: &RenderArgs) -> IntegratorKind {
+    if args.normals {
+        return IntegratorKind::Normals;
+    }
+    let m = args.max_depth;
+    let bounces = if args.direct_only {
+        0..=m.min(1)
+    } else if args.indirect_only {
+        2..=m
+    } else if args.accumulate == 0 {
+        m..=m
+    } else {
+        0..=m
+    };
+    IntegratorKind::Path(PathSettings {
+        bounces,
+        lighting: if args.hemisphere {
+            LightingMode::Hemisphere
+        } else if args.light_only {
+            LightingMode::Light
+        } else {
+            LightingMode::Mis
+        },
+        light_samples: args.light_samples,
+        roulette_from: (!args.no_roulette).then_some(3),
+    })
 }
 
 #[derive(Clone, Copy)]
@@ -108,7 +152,7 @@ fn write_output(path: &Path, format: OutputFormat, output: &RenderOutput) -> Res
 
 fn print_stats(scene: &Scene, output: &RenderOutput, load_time: std::time::Duration) {
     let s = &output.stats;
-    let a = scene.accel_stats();
+    let a = scene.accel_info();
     eprintln!(
         "candela: {} primitives, load {:.1} ms, BVH build {:.1} ms ({} nodes, depth {}, {:.1} bytes/primitive)",
         scene.primitive_count(),
@@ -116,7 +160,7 @@ fn print_stats(scene: &Scene, output: &RenderOutput, load_time: std::time::Durat
         scene.build_time.as_secs_f64() * 1e3,
         a.nodes,
         a.depth,
-        a.bytes as f64 / scene.primitive_count().max(1) as f64,
+        a.total_bytes as f64 / scene.primitive_count().max(1) as f64,
     );
     eprintln!(
         "candela: {} rays (camera {}, shadow {}, bounce {}) in {:.3} s on {} threads: {:.2} Mrays/s, {:.0} samples/s",
@@ -133,6 +177,10 @@ fn print_stats(scene: &Scene, output: &RenderOutput, load_time: std::time::Durat
         "candela: {:.1} nodes visited and {:.1} intersection tests per ray",
         s.nodes_per_ray(),
         s.tests_per_ray()
+    );
+    eprintln!(
+        "candela: {:.2} segments per path on average",
+        s.mean_path_length()
     );
     if s.invalid_samples > 0 {
         eprintln!(

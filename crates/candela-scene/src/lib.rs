@@ -8,6 +8,7 @@
 mod collada;
 pub mod desc;
 mod error;
+mod lamps;
 mod report;
 
 pub use desc::*;
@@ -71,7 +72,10 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
 /// Loads COLLADA text. `source` names the file in messages and is the base
 /// for relative texture paths.
 pub fn load_str(text: &str, source: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
-    collada::load_str(text, source, opts)
+    let mut loaded = collada::load_str(text, source, opts)?;
+    let notes = lamps::merge_duplicate_lamps(&mut loaded.scene);
+    loaded.report.warnings.extend(notes);
+    Ok(loaded)
 }
 
 /// The built-in demo scene (`scenes/demo.dae`: a Cornell box with a diffuse

@@ -133,8 +133,8 @@ pub fn surface_hit(
         let i = hit.prim as usize;
         let [v0, v1, v2] = tris.corners(i);
         let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
-        let (p, p_error) = shape::triangle::surface_point([v0, v1, v2], b);
-        let ng = (v1 - v0).cross(v2 - v0).normalize_or_zero();
+        let sp = shape::triangle_surface_point(&[v0, v1, v2], hit.b1, hit.b2);
+        let (p, p_error, ng) = (sp.p, sp.p_error, sp.n);
         let ni = tris.normal_indices[i];
         let ns = if ni[0] == NONE {
             ng
@@ -152,10 +152,9 @@ pub fn surface_hit(
         (p, p_error, ng, ns, uv, tris.material[i])
     } else {
         let s = &spheres[(hit.prim - n_tri) as usize];
-        let (p, p_error) = shape::sphere::surface_point(s.center, s.radius, ray.at(hit.t));
-        let n = ((p - s.center) / s.radius).normalize_or(Vec3::Y);
-        let uv = sphere_uv(n);
-        (p, p_error, n, n, uv, s.material)
+        let sp = shape::sphere_surface_point(s.center, s.radius, ray, hit.t);
+        let uv = Vec2::new(hit.b1, hit.b2);
+        (sp.p, sp.p_error, sp.n, sp.n, uv, s.material)
     };
     // Emitters emit on the side their authored (shading) normals point to;
     // the files' winding does not always agree with those normals.
@@ -173,11 +172,4 @@ pub fn surface_hit(
         front_face,
         t: hit.t,
     }
-}
-
-/// Spherical texture coordinates (u around the Y axis, v from the pole).
-fn sphere_uv(n: Vec3) -> Vec2 {
-    let u = 0.5 + n.z.atan2(n.x) / std::f32::consts::TAU;
-    let v = n.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI;
-    Vec2::new(u, v)
 }

@@ -9,7 +9,8 @@ mod lights;
 
 pub use geometry::{SphereData, SurfaceHit, TriangleData};
 
-use crate::accel::{Accel, AccelStats, BvhStrategy};
+use crate::accel::{Accel, AccelError, AccelInfo};
+use candela_bvh::BuildStrategy;
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
 use crate::camera::Camera;
 use crate::geometry::Ray;
@@ -29,7 +30,7 @@ pub struct SceneOptions {
     /// Camera placement.
     pub camera_mode: CameraMode,
     /// BVH construction strategy.
-    pub bvh: BvhStrategy,
+    pub bvh: BuildStrategy,
 }
 
 impl Default for SceneOptions {
@@ -38,7 +39,7 @@ impl Default for SceneOptions {
             width: 800,
             height: 600,
             camera_mode: CameraMode::Cs184,
-            bvh: BvhStrategy::Sah,
+            bvh: BuildStrategy::Sah,
         }
     }
 }
@@ -49,6 +50,9 @@ pub enum SceneError {
     /// The camera could not be placed.
     #[error("camera: {0}")]
     Camera(#[from] FramingError),
+    /// The geometry is inconsistent.
+    #[error("geometry: {0}")]
+    Geometry(#[from] AccelError),
 }
 
 /// An immutable scene, shared by all render threads.
@@ -107,12 +111,12 @@ impl Scene {
         let lights = lights::build_lights(desc, &triangles, &spheres, &materials, scene_radius);
         let start = Instant::now();
         let sphere_shapes: Vec<_> = spheres.iter().map(|s| (s.center, s.radius)).collect();
-        let accel = Accel::build(
+        let accel = Accel::build_indexed(
             &triangles.positions,
             &triangles.triangles,
             &sphere_shapes,
             opts.bvh,
-        );
+        )?;
         let build_time = start.elapsed();
         Ok(Scene {
             camera,
@@ -137,13 +141,13 @@ impl Scene {
     }
 
     /// Statistics of the acceleration structure.
-    pub fn accel_stats(&self) -> AccelStats {
-        self.accel.stats()
+    pub fn accel_info(&self) -> AccelInfo {
+        self.accel.info()
     }
 
     /// The closest surface along `ray`, if any.
     pub fn intersect(&self, ray: &Ray, stats: &mut TraversalStats) -> Option<SurfaceHit> {
-        let hit = self.accel.intersect(ray, stats)?;
+        let hit = self.accel.intersect_counted(ray, stats)?;
         Some(geometry::surface_hit(
             &self.triangles,
             &self.spheres,
@@ -154,6 +158,6 @@ impl Scene {
 
     /// Whether anything blocks `ray` before its `t_max`.
     pub fn occluded(&self, ray: &Ray, stats: &mut TraversalStats) -> bool {
-        self.accel.occluded(ray, stats)
+        self.accel.occluded_counted(ray, stats)
     }
 }
