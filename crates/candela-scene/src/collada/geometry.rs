@@ -88,6 +88,8 @@ fn read_mesh(
         let material = match el.attribute("material") {
             Some(sym) => match by_symbol.get(sym) {
                 Some(&mat) => b.material(ctx, mat)?,
+                // No bindings at all: the geometry simply has no material.
+                None if bindings.is_empty() => b.default_material(),
                 None => {
                     ctx.warn(
                         el,
