@@ -228,4 +228,26 @@ mod tests {
         assert!(matches!(err, ImageError::Read { .. }));
         assert!(err.to_string().contains("corrupt.png"));
     }
+
+    #[test]
+    fn sixteen_bit_grey_with_alpha_is_decoded_as_srgb_grey() {
+        let dir = TempDir::new("png-16");
+        let path = dir.path().join("g16.png");
+        // Two pixels: grey 0x8000 with alpha 0x1234, and white, fully opaque.
+        let data = [0x80, 0x00, 0x12, 0x34, 0xff, 0xff, 0xff, 0xff];
+        atomic_write(&path, |w| -> Result<(), png::EncodingError> {
+            let mut encoder = png::Encoder::new(w, 2, 1);
+            encoder.set_color(png::ColorType::GrayscaleAlpha);
+            encoder.set_depth(png::BitDepth::Sixteen);
+            let mut writer = encoder.write_header()?;
+            writer.write_image_data(&data)?;
+            writer.finish()
+        })
+        .unwrap();
+        let image = read_png(&path).unwrap();
+        let grey = srgb_decode(32768.0 / 65535.0);
+        assert_eq!(image.pixels(), &[[grey; 3], [1.0; 3]]);
+        // 0x8000 / 0xffff is just above one half: linear about 0.2140.
+        assert!((grey - 0.214_04).abs() < 1e-4, "{grey}");
+    }
 }

@@ -115,17 +115,15 @@ impl BlockStats {
     /// [`ImageError::InvalidArgument`] for fewer than two batches or a zero
     /// block size, [`ImageError::SizeMismatch`] if the batches differ in size.
     pub fn from_batches(batches: &[RgbImage], block_size: usize) -> Result<Self, ImageError> {
-        let [first, ..] = batches else {
-            return Err(ImageError::InvalidArgument(
-                "z-test needs at least two batches".into(),
-            ));
-        };
         if batches.len() < 2 {
             return Err(ImageError::InvalidArgument(
                 "z-test needs at least two batches".into(),
             ));
         }
+        let first = &batches[0];
         let mut stats = Self::empty(first.size(), block_size)?;
+        // A batch's plain block means: from_pixel_errors with zero errors.
+        let zero = RgbImage::new(first.width(), first.height())?;
         let mut per_batch = Vec::with_capacity(batches.len());
         for batch in batches {
             if batch.size() != first.size() {
@@ -136,8 +134,6 @@ impl BlockStats {
                     b: batch.size(),
                 });
             }
-            // A batch's plain block means: from_pixel_errors with zero errors.
-            let zero = RgbImage::new(first.width(), first.height())?;
             per_batch.push(Self::from_pixel_errors(batch, &zero, block_size)?);
         }
         let k = batches.len() as f64;
