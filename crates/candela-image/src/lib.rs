@@ -1,2 +1,28 @@
 //! Image buffers, PNG and OpenEXR output, tone mapping and error metrics.
+//!
+//! The renderer resolves its film into an [`RgbImage`] of linear radiance;
+//! this crate turns it into files ([`write_png`] through a [`ToneMap`],
+//! [`write_exr`] with denoiser layers), reads textures back ([`read_png`],
+//! [`read_exr`]) and measures error ([`metrics`]). Every file is written
+//! through [`atomic_write`], so an output path never holds a partial file.
 #![warn(missing_docs)]
+
+mod atomic;
+mod buffer;
+mod colormap;
+mod error;
+mod exr_io;
+pub mod metrics;
+mod png_io;
+mod tonemap;
+
+#[cfg(test)]
+mod test_util;
+
+pub use atomic::atomic_write;
+pub use buffer::{GrayImage, RgbImage};
+pub use colormap::{rate_colormap, rate_image};
+pub use error::{BoxError, ImageError};
+pub use exr_io::{read_exr, read_exr_layers, write_exr, ExrLayers, LayerData};
+pub use png_io::{read_png, write_png, write_png_display};
+pub use tonemap::{quantize_u8, srgb_decode, srgb_encode, ToneCurve, ToneMap};

@@ -1,0 +1,276 @@
+//! Linear float OpenEXR output with the auxiliary layers denoisers use, and
+//! EXR input for environment maps and references.
+//!
+//! # Channel names
+//! One single-part file, 32-bit float channels, ZIP (16 scanlines)
+//! compression, which is lossless and read by every EXR tool:
+//!
+//! | layer | channels | content |
+//! |---|---|---|
+//! | beauty | `R`, `G`, `B` | linear radiance |
+//! | albedo | `albedo.R`, `albedo.G`, `albedo.B` | first-hit albedo in `[0, 1]` |
+//! | normal | `normal.R`, `normal.G`, `normal.B` | first-hit normal, components X, Y, Z in `[-1, 1]` |
+//! | sample count | `samples` | samples taken per pixel |
+//! | extra RGB layer `name` | `name.R`, `name.G`, `name.B` | anything, e.g. a standard error |
+//! | extra scalar layer `name` | `name` | anything |
+//!
+//! `layer.R/G/B` is OpenEXR's own multi-layer convention (layer name, dot,
+//! channel name), which EXR tools split into layers; a denoiser front end
+//! finds the guides by the names `albedo` and `normal`. Normals use
+//! `R/G/B` rather than `X/Y/Z` so every three-channel layer reads the same
+//! way. Open Image Denoise itself takes separate buffers, so a caller hands
+//! it these layers one by one.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use exr::prelude::{
+    read_first_flat_layer_from_file, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer,
+    LayerAttributes, SmallVec, Text, Vec2, WritableImage,
+};
+
+use crate::{atomic_write, GrayImage, ImageError, RgbImage};
+
+/// The data of an extra layer: three colour channels or one scalar.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LayerData {
+    /// Written as `<name>.R`, `<name>.G`, `<name>.B`.
+    Rgb(RgbImage),
+    /// Written as `<name>`.
+    Gray(GrayImage),
+}
+
+/// Everything that goes into one EXR file: the beauty image and optional
+/// auxiliary layers of the same size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExrLayers {
+    /// Linear radiance, channels `R`, `G`, `B`.
+    pub beauty: RgbImage,
+    /// Albedo for denoising, channels `albedo.R/G/B`.
+    pub albedo: Option<RgbImage>,
+    /// Shading normals (X, Y, Z) for denoising, channels `normal.R/G/B`.
+    pub normal: Option<RgbImage>,
+    /// Samples per pixel, channel `samples`: shows where adaptive sampling
+    /// spent its effort.
+    pub sample_count: Option<GrayImage>,
+    /// Further layers by name (e.g. a per-pixel standard error for
+    /// statistical comparison). Names must be ASCII and distinct from the
+    /// channels above.
+    pub extra: Vec<(String, LayerData)>,
+}
+
+impl ExrLayers {
+    /// Just a beauty image, no auxiliary layers.
+    pub fn beauty(beauty: RgbImage) -> Self {
+        Self {
+            beauty,
+            albedo: None,
+            normal: None,
+            sample_count: None,
+            extra: Vec::new(),
+        }
+    }
+
+    /// Every layer as `(channel name, values)` pairs, checking sizes.
+    fn channels(&self) -> Result<Vec<(String, Vec<f32>)>, ImageError> {
+        let size = self.beauty.size();
+        let mut layers: Vec<(&str, LayerRef)> = Vec::new();
+        if let Some(albedo) = &self.albedo {
+            layers.push(("albedo", LayerRef::Rgb(albedo)));
+        }
+        if let Some(normal) = &self.normal {
+            layers.push(("normal", LayerRef::Rgb(normal)));
+        }
+        if let Some(count) = &self.sample_count {
+            layers.push(("samples", LayerRef::Gray(count)));
+        }
+        for (name, data) in &self.extra {
+            layers.push(match data {
+                LayerData::Rgb(image) => (name, LayerRef::Rgb(image)),
+                LayerData::Gray(image) => (name, LayerRef::Gray(image)),
+            });
+        }
+        let mut out = rgb_channels("", &self.beauty);
+        for (name, data) in layers {
+            let layer_size = match data {
+                LayerRef::Rgb(image) => image.size(),
+                LayerRef::Gray(image) => image.size(),
+            };
+            if layer_size != size {
+                let what = "EXR layer must match the beauty image size";
+                return Err(ImageError::SizeMismatch {
+                    what,
+                    a: size,
+                    b: layer_size,
+                });
+            }
+            match data {
+                LayerRef::Rgb(image) => out.extend(rgb_channels(name, image)),
+                LayerRef::Gray(image) => out.push((name.to_string(), image.values().to_vec())),
+            }
+        }
+        let mut seen = BTreeSet::new();
+        for (name, _) in &out {
+            if !seen.insert(name.as_str()) {
+                return Err(ImageError::InvalidArgument(format!(
+                    "duplicate EXR channel {name}"
+                )));
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// A borrowed layer, so collecting channels does not copy whole images.
+enum LayerRef<'a> {
+    Rgb(&'a RgbImage),
+    Gray(&'a GrayImage),
+}
+
+/// The three channels of an RGB layer; `prefix` empty for the beauty layer.
+fn rgb_channels(prefix: &str, image: &RgbImage) -> Vec<(String, Vec<f32>)> {
+    let dot = if prefix.is_empty() { "" } else { "." };
+    ["R", "G", "B"]
+        .iter()
+        .enumerate()
+        .map(|(c, suffix)| {
+            let values = image.pixels().iter().map(|p| p[c]).collect();
+            (format!("{prefix}{dot}{suffix}"), values)
+        })
+        .collect()
+}
+
+/// Writes `layers` as a linear 32-bit float OpenEXR file, atomically.
+///
+/// Values are stored exactly, NaN and infinities included: an EXR is data,
+/// and hiding a bad sample would defeat debugging.
+///
+/// # Errors
+/// [`ImageError::SizeMismatch`] if a layer's size differs from the beauty
+/// image, [`ImageError::InvalidArgument`] for non-ASCII or duplicate channel
+/// names, and the errors of [`atomic_write`].
+pub fn write_exr(path: impl AsRef<Path>, layers: &ExrLayers) -> Result<(), ImageError> {
+    let (width, height) = layers.beauty.size();
+    let mut channels = SmallVec::new();
+    for (name, values) in layers.channels()? {
+        let text = Text::new_or_none(&name).ok_or_else(|| {
+            ImageError::InvalidArgument(format!("EXR channel name {name:?} is not plain ASCII"))
+        })?;
+        channels.push(AnyChannel::new(text, FlatSamples::F32(values)));
+    }
+    let layer = Layer::new(
+        Vec2(width, height),
+        LayerAttributes::default(),
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(channels),
+    );
+    let image = Image::from_layer(layer);
+    atomic_write(path, |writer| image.write().to_buffered(writer))
+}
+
+/// Reads the first layer of an EXR file as linear RGB from its `R`, `G`, `B`
+/// channels; a luminance-only file (`Y`) is read as grey.
+///
+/// # Errors
+/// [`ImageError::Read`] naming the file if it cannot be opened or decoded,
+/// or has neither `R`, `G`, `B` nor `Y` channels.
+pub fn read_exr(path: impl AsRef<Path>) -> Result<RgbImage, ImageError> {
+    Ok(read_exr_layers(path)?.beauty)
+}
+
+/// Reads an EXR file written by [`write_exr`] (or any file following the
+/// same channel names) back into its layers.
+///
+/// Channels named `<layer>.R/G/B` become RGB layers, any other channel a
+/// scalar layer; 16-bit and integer channels are converted to `f32`.
+///
+/// # Errors
+/// As [`read_exr`].
+pub fn read_exr_layers(path: impl AsRef<Path>) -> Result<ExrLayers, ImageError> {
+    let path = path.as_ref();
+    let read_err = |source| ImageError::Read {
+        path: path.into(),
+        source,
+    };
+    let image = read_first_flat_layer_from_file(path).map_err(|e| read_err(e.into()))?;
+    let layer = image.layer_data;
+    let (width, height) = (layer.size.width(), layer.size.height());
+    let mut channels: Vec<(String, Vec<f32>)> = layer
+        .channel_data
+        .list
+        .into_iter()
+        .map(|c| (c.name.to_string(), c.sample_data.values_as_f32().collect()))
+        .collect();
+
+    let beauty = match take_rgb(&mut channels, "", width, height)? {
+        Some(beauty) => beauty,
+        None => match take(&mut channels, "Y") {
+            Some(y) => {
+                RgbImage::from_pixels(width, height, y.into_iter().map(|v| [v; 3]).collect())?
+            }
+            None => return Err(read_err("no R, G, B or Y channels".into())),
+        },
+    };
+    let albedo = take_rgb(&mut channels, "albedo", width, height)?;
+    let normal = take_rgb(&mut channels, "normal", width, height)?;
+    let sample_count = take(&mut channels, "samples")
+        .map(|v| GrayImage::from_values(width, height, v))
+        .transpose()?;
+    let mut extra = Vec::new();
+    while let Some((name, _)) = channels.first() {
+        let prefix = name.rsplit_once('.').map(|(p, _)| p.to_string());
+        if let Some(rgb) = prefix
+            .as_ref()
+            .map(|p| take_rgb(&mut channels, p, width, height))
+        {
+            if let Some(rgb) = rgb? {
+                extra.push((prefix.unwrap_or_default(), LayerData::Rgb(rgb)));
+                continue;
+            }
+        }
+        let (name, values) = channels.remove(0);
+        extra.push((
+            name,
+            LayerData::Gray(GrayImage::from_values(width, height, values)?),
+        ));
+    }
+    Ok(ExrLayers {
+        beauty,
+        albedo,
+        normal,
+        sample_count,
+        extra,
+    })
+}
+
+/// Removes and returns the channel called `name`.
+fn take(channels: &mut Vec<(String, Vec<f32>)>, name: &str) -> Option<Vec<f32>> {
+    let index = channels.iter().position(|(n, _)| n == name)?;
+    Some(channels.remove(index).1)
+}
+
+/// Removes and returns the RGB layer `prefix` if all three channels exist.
+fn take_rgb(
+    channels: &mut Vec<(String, Vec<f32>)>,
+    prefix: &str,
+    width: usize,
+    height: usize,
+) -> Result<Option<RgbImage>, ImageError> {
+    let dot = if prefix.is_empty() { "" } else { "." };
+    let names = ["R", "G", "B"].map(|s| format!("{prefix}{dot}{s}"));
+    if !names.iter().all(|n| channels.iter().any(|(c, _)| c == n)) {
+        return Ok(None);
+    }
+    let [r, g, b] = names.map(|n| take(channels, &n).unwrap_or_default());
+    let pixels = r
+        .iter()
+        .zip(&g)
+        .zip(&b)
+        .map(|((&r, &g), &b)| [r, g, b])
+        .collect();
+    RgbImage::from_pixels(width, height, pixels).map(Some)
+}
+
+#[cfg(test)]
+#[path = "exr_io_tests.rs"]
+mod tests;
