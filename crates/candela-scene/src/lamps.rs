@@ -106,6 +106,7 @@ fn close(a: f32, b: f32) -> bool {
 mod tests {
     use super::*;
     use crate::desc::{BsdfDesc, LightDesc, MaterialDesc, MeshDesc, SourceLoc};
+    use crate::{load_str, LoadOptions};
 
     /// A 0.8 x 0.6 lamp at height 1.49 facing down, and an area light.
     fn scene_with(light_center: Vec3, light_radiance: f32) -> SceneDesc {
@@ -159,5 +160,13 @@ mod tests {
             assert!(merge_duplicate_lamps(&mut scene).is_empty());
             assert_eq!(scene.lights.len(), 1);
         }
+    }
+
+    #[test]
+    fn the_demo_scene_has_one_lamp() {
+        let loaded = crate::demo_scene();
+        assert!(loaded.report.notes.is_empty(), "the demo describes its lamp once");
+        assert!(loaded.scene.lights.is_empty());
+        let _ = (load_str, LoadOptions::default());
     }
 }

@@ -24,6 +24,10 @@ pub struct LoadOptions {
     /// [`ErrorKind::Unsupported`] error, for users who want to know that what
     /// they render is exactly what the file says.
     pub strict: bool,
+    /// Keep a CGL area light that duplicates an emissive mesh (the CS184
+    /// Cornell-box lamp) instead of counting that lamp once. Only for tools
+    /// that want the file exactly as written: rendering both doubles the light.
+    pub keep_duplicate_lamps: bool,
 }
 
 /// A loaded scene and what the loader ignored on the way.
@@ -73,8 +77,10 @@ pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
 /// for relative texture paths.
 pub fn load_str(text: &str, source: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     let mut loaded = collada::load_str(text, source, opts)?;
-    let notes = lamps::merge_duplicate_lamps(&mut loaded.scene);
-    loaded.report.warnings.extend(notes);
+    if !opts.keep_duplicate_lamps {
+        let notes = lamps::merge_duplicate_lamps(&mut loaded.scene);
+        loaded.report.notes.extend(notes);
+    }
     Ok(loaded)
 }
 
@@ -100,6 +106,7 @@ pub fn demo_scene() -> Loaded {
                 message: e.message,
                 count: 1,
             }],
+            notes: Vec::new(),
         },
     })
 }

@@ -40,6 +40,10 @@ pub struct Report {
     pub source: PathBuf,
     /// One entry per distinct ignored feature.
     pub warnings: Vec<Warning>,
+    /// Decisions the loader took that change what is rendered without
+    /// dropping anything the file asks for (e.g. a lamp described twice,
+    /// counted once). Not warnings: `--strict` does not refuse them.
+    pub notes: Vec<Warning>,
 }
 
 impl Report {
@@ -87,6 +91,7 @@ impl Collector {
             report: Report {
                 source,
                 warnings: Vec::new(),
+                notes: Vec::new(),
             },
             seen: HashMap::new(),
         }

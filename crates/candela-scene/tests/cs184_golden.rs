@@ -31,7 +31,11 @@ fn cs184_dir() -> Option<PathBuf> {
 
 fn load_strict(name: &str) -> Option<SceneDesc> {
     let path = cs184_dir()?.join(name);
-    let loaded = load(&path, &LoadOptions { strict: true }).unwrap_or_else(|e| panic!("{e}"));
+    let opts = LoadOptions {
+        strict: true,
+        keep_duplicate_lamps: true,
+    };
+    let loaded = load(&path, &opts).unwrap_or_else(|e| panic!("{e}"));
     assert!(loaded.report.is_empty(), "{}", loaded.report);
     Some(loaded.scene)
 }
@@ -267,6 +271,14 @@ fn cornell_box_camera_transform_lights_spheres_and_materials() {
         }
         k => panic!("expected an area light, got {k:?}"),
     }
+    // Loaded for rendering, the area light merges into the lamp mesh it
+    // duplicates, and the report says so.
+    let path = cs184_dir().unwrap().join("CBspheres.dae");
+    let merged = load(&path, &LoadOptions::default()).unwrap();
+    assert!(merged.scene.lights.is_empty());
+    assert_eq!(merged.report.notes.len(), 1);
+    assert!(merged.report.notes[0].message.contains("counted once"));
+    assert!(merged.report.is_empty(), "a merge is a note, not a warning");
     let mut spheres: Vec<_> = s
         .spheres
         .iter()

@@ -24,7 +24,7 @@ fn triangle_scene(up: &str, transforms: &str, outer: (&str, &str)) -> SceneDesc 
 </COLLADA>"##,
         outer.0, outer.1
     );
-    load_str(&text, Path::new("t.dae"), &LoadOptions { strict: true })
+    load_str(&text, Path::new("t.dae"), &LoadOptions { strict: true, ..Default::default() })
         .unwrap()
         .scene
 }
