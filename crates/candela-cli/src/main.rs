@@ -1,2 +1,29 @@
 //! `candela`: render a scene from the command line.
-fn main() {}
+//!
+//! Minimal wiring of `candela bench ...` for now; the full command line
+//! (CS184-compatible render flags) replaces this file.
+
+mod bench;
+
+use clap::{Parser, Subcommand};
+
+/// Command line of the `candela` binary.
+#[derive(Debug, Parser)]
+#[command(name = "candela", about = "A physically based path tracer")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Benchmarks of the ray-intersection core.
+    #[command(subcommand)]
+    Bench(bench::BenchCommand),
+}
+
+fn main() -> anyhow::Result<()> {
+    match Cli::parse().command {
+        Command::Bench(cmd) => bench::run(cmd),
+    }
+}
