@@ -1,0 +1,135 @@
+//! `candela bench`: replays fixed ray sets through the acceleration
+//! structure (the yardstick is Embree on the same rays) and measures how
+//! build time, memory and query rate scale with triangle count.
+
+mod files;
+mod replay;
+mod scaling;
+mod timing;
+
+use anyhow::Result;
+use candela_bvh::BuildStrategy;
+use candela_render::accel::Accel;
+use candela_render::geometry::Ray;
+use clap::{Args, Subcommand, ValueEnum};
+use rayon::prelude::*;
+use std::path::PathBuf;
+use timing::{measure, Measure};
+
+/// Benchmarks of the ray-intersection core.
+#[derive(Debug, Subcommand)]
+pub enum BenchCommand {
+    /// Replay a ray set against a mesh, checked against reference hits.
+    Rays(RaysArgs),
+    /// Build and query synthetic meshes from 10k to 2M triangles.
+    Scaling(ScalingArgs),
+}
+
+/// Arguments of `candela bench rays`.
+#[derive(Debug, Args)]
+pub struct RaysArgs {
+    /// Triangle mesh (`.tri`).
+    pub mesh: PathBuf,
+    /// Ray set (`.rays`).
+    pub rays: PathBuf,
+    /// Reference closest hits (`.hits`) for the first rays; a mismatch fails the run.
+    #[arg(long)]
+    pub hits: Option<PathBuf>,
+    /// Threads for the multi-threaded figures (the single-thread figure is always reported).
+    #[arg(short = 't', long, default_value_t = 2)]
+    pub threads: usize,
+    /// Time only any-hit (shadow) queries.
+    #[arg(long)]
+    pub any_hit: bool,
+    /// BVH build strategy.
+    #[arg(long, value_enum, default_value_t = Strategy::Sah)]
+    pub bvh: Strategy,
+    /// Minimum seconds per timed measurement.
+    #[arg(long, default_value_t = 1.0)]
+    pub seconds: f64,
+}
+
+/// Arguments of `candela bench scaling`.
+#[derive(Debug, Args)]
+pub struct ScalingArgs {
+    /// Triangle counts to generate (approximate).
+    #[arg(long, value_delimiter = ',', default_values_t = [10_000usize, 50_000, 200_000, 1_200_000, 2_000_000])]
+    pub sizes: Vec<usize>,
+    /// Rays per query measurement.
+    #[arg(long, default_value_t = 200_000)]
+    pub rays: usize,
+    /// BVH build strategy.
+    #[arg(long, value_enum, default_value_t = Strategy::Sah)]
+    pub bvh: Strategy,
+}
+
+/// The build strategy as a command-line value.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Strategy {
+    /// Binned surface area heuristic.
+    Sah,
+    /// Centroid median split (the CS184 algorithm).
+    Median,
+    /// No hierarchy: brute force.
+    None,
+}
+
+impl From<Strategy> for BuildStrategy {
+    fn from(s: Strategy) -> Self {
+        match s {
+            Strategy::Sah => BuildStrategy::Sah,
+            Strategy::Median => BuildStrategy::Median,
+            Strategy::None => BuildStrategy::None,
+        }
+    }
+}
+
+/// Runs a benchmark command, printing a report to stdout.
+pub fn run(cmd: BenchCommand) -> Result<()> {
+    match cmd {
+        BenchCommand::Rays(args) => replay::run(&args),
+        BenchCommand::Scaling(args) => scaling::run(&args),
+    }
+}
+
+/// Traces every ray on `threads` threads (closest or any hit) for at least
+/// `seconds`; returns the measurement and the number of hits.
+fn throughput(
+    accel: &Accel,
+    rays: &[Ray],
+    threads: usize,
+    any_hit: bool,
+    seconds: f64,
+) -> Result<(Measure, u64)> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.max(1))
+        .build()?;
+    let pass = || {
+        pool.install(|| {
+            rays.par_chunks(4096)
+                .map(|chunk| {
+                    let mut hits = 0u64;
+                    for r in chunk {
+                        hits += if any_hit {
+                            accel.occluded(r)
+                        } else {
+                            accel.intersect(r).is_some()
+                        } as u64;
+                    }
+                    hits
+                })
+                .sum::<u64>()
+        })
+    };
+    Ok(measure(rays.len() as u64, seconds, pass))
+}
+
+/// One line of a throughput table; `hits` of `n_rays` in one pass.
+fn report_line(label: &str, threads: usize, m: &Measure, hits: u64, n_rays: usize) {
+    let cpu = m.cpu_rate().map_or("?".to_string(), |r| format!("{r:.2}"));
+    println!(
+        "  {label:<8} {threads} thread(s): {:>7.2} Mrays/s wall, {:>6.2} per thread, {cpu:>6} per CPU-second  ({hits} of {n_rays} hit)",
+        m.wall_rate(),
+        m.wall_rate() / threads as f64,
+    );
+}

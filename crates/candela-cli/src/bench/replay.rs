@@ -1,0 +1,135 @@
+//! `candela bench rays`: replay a fixed ray set, check it, time it.
+
+use super::files::{read_hits, read_rays, read_tri, Hits};
+use super::{report_line, throughput, RaysArgs};
+use anyhow::{bail, Result};
+use candela_render::accel::{Accel, TraversalStats};
+use candela_render::geometry::Ray;
+use glam::Vec3;
+
+/// Reads, builds, checks, then times closest and any hit on 1 and N threads.
+pub fn run(args: &RaysArgs) -> Result<()> {
+    let mesh = read_tri(&args.mesh)?;
+    let set = read_rays(&args.rays)?;
+    let hits = args.hits.as_deref().map(read_hits).transpose()?;
+    let n_tri = mesh.indices.len();
+    println!(
+        "{}: {n_tri} triangles; {}: {} {} rays",
+        args.mesh.display(),
+        args.rays.display(),
+        set.rays.len(),
+        if set.kind == 0 { "primary" } else { "diffuse" }
+    );
+    let accel = Accel::build_indexed(&mesh.positions, &mesh.indices, &[], args.bvh.into())?;
+    let info = accel.info();
+    println!(
+        "build ({:?}): {:.1} ms, {} nodes, depth {}, BVH {:.1} bytes/triangle, with triangle data {:.1} bytes/triangle",
+        args.bvh,
+        info.build_seconds * 1e3,
+        info.nodes,
+        info.depth,
+        info.bvh_bytes as f64 / n_tri.max(1) as f64,
+        info.total_bytes as f64 / n_tri.max(1) as f64
+    );
+    let rays: Vec<Ray> = set
+        .rays
+        .iter()
+        .map(|&(o, d)| Ray {
+            origin: o,
+            dir: d,
+            t_max: set.t_far,
+        })
+        .collect();
+    if let Some(hits) = &hits {
+        check_hits(&accel, &rays, hits, &mesh.positions, &mesh.indices)?;
+    }
+    let mut stats = TraversalStats::default();
+    for r in &rays {
+        accel.intersect_counted(r, &mut stats);
+    }
+    let n = rays.len().max(1) as f64;
+    println!(
+        "closest hit: {:.1} nodes, {:.1} triangle tests per ray",
+        stats.nodes_visited as f64 / n,
+        stats.prims_tested as f64 / n
+    );
+    let modes: &[bool] = if args.any_hit {
+        &[true]
+    } else {
+        &[false, true]
+    };
+    for &any in modes {
+        for threads in [1, args.threads] {
+            let (m, h) = throughput(&accel, &rays, threads, any, args.seconds)?;
+            report_line(
+                if any { "any" } else { "closest" },
+                threads,
+                &m,
+                h,
+                rays.len(),
+            );
+            if args.threads == 1 {
+                break;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Compares closest hits with the reference. Ids must match and `t` agree
+/// to 1e-5 relative; a different id at the same `t` is an exact tie (an edge
+/// or vertex shared by two triangles) and is only reported.
+fn check_hits(
+    accel: &Accel,
+    rays: &[Ray],
+    hits: &Hits,
+    pos: &[Vec3],
+    idx: &[[u32; 3]],
+) -> Result<()> {
+    if hits.len() > rays.len() {
+        bail!("{} reference hits for only {} rays", hits.len(), rays.len());
+    }
+    let (mut ties, mut bad) = (Vec::new(), Vec::new());
+    for (i, (&(t_ref, id_ref), ray)) in hits.iter().zip(rays).enumerate() {
+        let got = accel.intersect(ray);
+        let (t, id) = got.map_or((f32::INFINITY, u32::MAX), |h| (h.t, h.prim));
+        let t_ok = t == t_ref || ((t - t_ref) / t_ref).abs() <= 1e-5;
+        if id == id_ref && t_ok {
+            continue;
+        }
+        if t_ok && id != u32::MAX && id_ref != u32::MAX && shares_vertex(idx, id, id_ref, pos) {
+            ties.push(i);
+        } else {
+            bad.push(format!(
+                "ray {i}: got t={t} id={id}, reference t={t_ref} id={id_ref}"
+            ));
+        }
+    }
+    println!(
+        "check: {} of {} rays match the reference; {} exact-edge ties {:?}",
+        hits.len() - ties.len() - bad.len(),
+        hits.len(),
+        ties.len(),
+        &ties[..ties.len().min(10)]
+    );
+    if !bad.is_empty() {
+        bail!(
+            "{} rays disagree with the reference:\n{}",
+            bad.len(),
+            bad[..bad.len().min(20)].join("\n")
+        );
+    }
+    Ok(())
+}
+
+/// True if the two triangles share a vertex position (a tie on an edge or
+/// vertex between them is then a legitimate alternative answer).
+fn shares_vertex(idx: &[[u32; 3]], a: u32, b: u32, pos: &[Vec3]) -> bool {
+    let (Some(ta), Some(tb)) = (idx.get(a as usize), idx.get(b as usize)) else {
+        return false;
+    };
+    ta.iter().any(|&i| {
+        tb.iter()
+            .any(|&j| i == j || pos[i as usize] == pos[j as usize])
+    })
+}
