@@ -45,7 +45,12 @@ pub struct RenderArgs {
     pub spp: u32,
 
     /// Light samples per area light at each path vertex (one per delta light).
-    #[arg(short = 'l', long = "light-samples", default_value_t = 1, value_name = "N")]
+    #[arg(
+        short = 'l',
+        long = "light-samples",
+        default_value_t = 1,
+        value_name = "N"
+    )]
     pub light_samples: u32,
 
     /// Maximum number of bounces: 0 emitters seen directly, 1 direct lighting,
@@ -88,7 +93,12 @@ pub struct RenderArgs {
     pub resolution: Vec<u32>,
 
     /// Output image: .png (8-bit sRGB) or .exr (linear float).
-    #[arg(short = 'f', long = "file", value_name = "PATH", default_value = "candela.png")]
+    #[arg(
+        short = 'f',
+        long = "file",
+        value_name = "PATH",
+        default_value = "candela.png"
+    )]
     pub output: PathBuf,
 
     /// Seed of the sample sequence; the same seed gives the same image.
@@ -162,7 +172,17 @@ mod tests {
     #[test]
     fn cs184_command_line_parses() {
         let cli = Cli::try_parse_from([
-            "candela", "-t", "2", "-s", "16", "-r", "480", "360", "-f", "out.png", "scene.dae",
+            "candela",
+            "-t",
+            "2",
+            "-s",
+            "16",
+            "-r",
+            "480",
+            "360",
+            "-f",
+            "out.png",
+            "scene.dae",
         ])
         .unwrap();
         assert_eq!(cli.render.resolution, vec![480, 360]);

@@ -3,12 +3,12 @@
 use crate::args::{BvhArg, CameraArg, RenderArgs, SamplerArg};
 use crate::progress::samples_bar;
 use anyhow::{Context, Result};
-use candela_image::{write_exr, write_png, ExrLayers, RgbImage, ToneMap};
 use candela_bvh::BuildStrategy;
+use candela_image::{write_exr, write_png, ExrLayers, RgbImage, ToneMap};
 use candela_render::camera::framing::CameraMode;
 use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
-use candela_render::sampling::SamplerKind;
 use candela_render::render::{render, RenderOutput, RenderSettings};
+use candela_render::sampling::SamplerKind;
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{LoadOptions, Loaded};
 use std::path::Path;
@@ -28,14 +28,26 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     let load_start = Instant::now();
     let loaded = match &args.scene {
-        Some(path) => candela_scene::load(path, &LoadOptions { strict: args.strict })?,
+        Some(path) => candela_scene::load(
+            path,
+            &LoadOptions {
+                strict: args.strict,
+                ..Default::default()
+            },
+        )?,
         None => candela_scene::demo_scene(),
     };
     let load_time = load_start.elapsed();
-    let Loaded { scene: desc, report } = loaded;
+    let Loaded {
+        scene: desc,
+        report,
+    } = loaded;
     if !args.quiet {
         for warning in &report.warnings {
-            eprintln!("candela: warning: {}: {warning}", desc.source.display());
+            eprintln!("candela: warning: {}:{warning}", desc.source.display());
+        }
+        for note in &report.notes {
+            eprintln!("candela: note: {}:{note}", desc.source.display());
         }
     }
     let opts = SceneOptions {
@@ -55,7 +67,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         .with_context(|| format!("cannot render {}", desc.source.display()))?;
     if !args.quiet {
         for what in &scene.unsupported {
-            eprintln!("candela: warning: {}: not supported yet: {what}", desc.source.display());
+            eprintln!(
+                "candela: warning: {}: not supported yet: {what}",
+                desc.source.display()
+            );
         }
         if !args.normals && scene.lights.is_empty() {
             eprintln!(
@@ -142,7 +157,7 @@ impl OutputFormat {
 fn write_output(path: &Path, format: OutputFormat, output: &RenderOutput) -> Result<()> {
     let film = &output.film;
     let pixels = film.resolve().into_iter().map(|c| c.to_array()).collect();
-    let image = RgbImage::from_pixels(film.width, film.height, pixels);
+    let image = RgbImage::from_pixels(film.width as usize, film.height as usize, pixels)?;
     match format {
         OutputFormat::Png => write_png(path, &image, &ToneMap::default()),
         OutputFormat::Exr => write_exr(path, &ExrLayers::beauty(image)),

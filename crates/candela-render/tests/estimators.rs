@@ -12,7 +12,11 @@ use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
 use common::*;
 
 const Z: f64 = 4.5;
-const MODES: [LightingMode; 3] = [LightingMode::Hemisphere, LightingMode::Light, LightingMode::Mis];
+const MODES: [LightingMode; 3] = [
+    LightingMode::Hemisphere,
+    LightingMode::Light,
+    LightingMode::Mis,
+];
 
 fn path(bounces: std::ops::RangeInclusive<u32>, lighting: LightingMode) -> IntegratorKind {
     IntegratorKind::Path(PathSettings {
@@ -29,7 +33,12 @@ fn white_furnace_converges_to_le_over_one_minus_albedo() {
     let scene = furnace(albedo as f32, le as f32);
     for mode in MODES {
         let e = estimate(&scene, path(0..=100_000, mode), 16, 64, 1);
-        assert_converges(&format!("{mode:?}, unlimited depth"), &e, le / (1.0 - albedo), Z);
+        assert_converges(
+            &format!("{mode:?}, unlimited depth"),
+            &e,
+            le / (1.0 - albedo),
+            Z,
+        );
     }
 }
 
@@ -54,7 +63,12 @@ fn furnace_single_bounce_view_isolates_one_term() {
     for mode in MODES {
         for m in [1u32, 3] {
             let e = estimate(&scene, path(m..=m, mode), 8, 64, 11 + m as u64);
-            assert_converges(&format!("{mode:?}, -o 0 -m {m}"), &e, le * albedo.powi(m as i32), Z);
+            assert_converges(
+                &format!("{mode:?}, -o 0 -m {m}"),
+                &e,
+                le * albedo.powi(m as i32),
+                Z,
+            );
         }
     }
 }
@@ -94,6 +108,14 @@ fn russian_roulette_changes_noise_not_the_mean() {
     assert_converges("without roulette", &b, expected, Z);
     // Two independent estimates of the same mean.
     let z = (a.mean - b.mean).abs() / (a.std_error.powi(2) + b.std_error.powi(2)).sqrt();
-    assert!(z < Z, "roulette moved the mean: {} vs {} (z = {z:.2})", a.mean, b.mean);
-    assert!(a.std_error > b.std_error, "roulette should add noise here, not remove it");
+    assert!(
+        z < Z,
+        "roulette moved the mean: {} vs {} (z = {z:.2})",
+        a.mean,
+        b.mean
+    );
+    assert!(
+        a.std_error > b.std_error,
+        "roulette should add noise here, not remove it"
+    );
 }

@@ -147,7 +147,11 @@ mod tests {
         let notes = merge_duplicate_lamps(&mut scene);
         assert!(scene.lights.is_empty());
         assert_eq!(notes.len(), 1);
-        assert!(notes[0].message.contains("counted once"), "{}", notes[0].message);
+        assert!(
+            notes[0].message.contains("counted once"),
+            "{}",
+            notes[0].message
+        );
     }
 
     #[test]
@@ -165,7 +169,10 @@ mod tests {
     #[test]
     fn the_demo_scene_has_one_lamp() {
         let loaded = crate::demo_scene();
-        assert!(loaded.report.notes.is_empty(), "the demo describes its lamp once");
+        assert!(
+            loaded.report.notes.is_empty(),
+            "the demo describes its lamp once"
+        );
         assert!(loaded.scene.lights.is_empty());
         let _ = (load_str, LoadOptions::default());
     }

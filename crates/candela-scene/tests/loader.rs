@@ -24,9 +24,16 @@ fn triangle_scene(up: &str, transforms: &str, outer: (&str, &str)) -> SceneDesc 
 </COLLADA>"##,
         outer.0, outer.1
     );
-    load_str(&text, Path::new("t.dae"), &LoadOptions { strict: true, ..Default::default() })
-        .unwrap()
-        .scene
+    load_str(
+        &text,
+        Path::new("t.dae"),
+        &LoadOptions {
+            strict: true,
+            ..Default::default()
+        },
+    )
+    .unwrap()
+    .scene
 }
 
 fn close(a: Vec3, b: Vec3) -> bool {

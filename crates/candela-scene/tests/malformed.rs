@@ -32,7 +32,14 @@ fn kind_named(prefix: &str) -> ErrorKind {
 #[test]
 fn the_valid_base_file_loads() {
     // The corpus is the base file with one change each; the base itself is fine.
-    let l = load(&dir().join("valid_base.dae"), &LoadOptions { strict: true, ..Default::default() }).unwrap();
+    let l = load(
+        &dir().join("valid_base.dae"),
+        &LoadOptions {
+            strict: true,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let s = l.scene;
     assert_eq!(
         (s.meshes.len(), s.triangle_count(), s.spheres.len()),
@@ -137,6 +144,14 @@ fn unsupported_features_warn_once_or_fail_in_strict_mode() {
         .find(|w| w.message.contains("COLOR"))
         .unwrap();
     assert_eq!(color.count, 2, "{}", l.report);
-    let err = load_str(&text, Path::new("warn.dae"), &LoadOptions { strict: true, ..Default::default() }).unwrap_err();
+    let err = load_str(
+        &text,
+        Path::new("warn.dae"),
+        &LoadOptions {
+            strict: true,
+            ..Default::default()
+        },
+    )
+    .unwrap_err();
     assert_eq!(err.kind, ErrorKind::Unsupported, "{err}");
 }

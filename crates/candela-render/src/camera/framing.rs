@@ -94,11 +94,7 @@ fn cs184_orbit(
     let d = d.try_normalize().unwrap_or(Vec3::Z);
     let phi = d.y.clamp(-1.0, 1.0).acos();
     let theta = d.x.atan2(d.z);
-    let dir = Vec3::new(
-        phi.sin() * theta.sin(),
-        phi.cos(),
-        phi.sin() * theta.cos(),
-    );
+    let dir = Vec3::new(phi.sin() * theta.sin(), phi.cos(), phi.sin() * theta.cos());
     let eye = target + r * dir;
     // Straight above or below the target the orbit's up vector vanishes; any
     // horizontal up then gives a valid view.
@@ -158,7 +154,10 @@ mod tests {
     fn fov_follows_the_render_size_at_fixed_focal_length() {
         // A 4:3 file camera at 800x600 keeps its own field of view.
         let (h, v) = cs184_fov(50.0, 38.5, 800, 600);
-        let expect_v = 2.0 * ((50f32.to_radians() / 2.0).tan() * 0.75).atan().to_degrees();
+        let expect_v = 2.0
+            * ((50f32.to_radians() / 2.0).tan() * 0.75)
+                .atan()
+                .to_degrees();
         assert!((v - expect_v).abs() < 1e-3, "{v} vs {expect_v}");
         assert!((h - 50.0).abs() < 1e-3, "{h}");
         // Half the pixels in each direction: tan of the half angle halves.

@@ -149,7 +149,11 @@ mod tests {
         };
         let t_focus = 4.0 / pinhole.dir.dot(c.forward);
         let focus = pinhole.at(t_focus);
-        for u in [Vec2::new(0.1, 0.9), Vec2::new(0.7, 0.2), Vec2::new(0.5, 0.5)] {
+        for u in [
+            Vec2::new(0.1, 0.9),
+            Vec2::new(0.7, 0.2),
+            Vec2::new(0.5, 0.5),
+        ] {
             let r = c.generate_ray(film, u);
             let t = (focus - r.origin).dot(c.forward) / r.dir.dot(c.forward);
             assert!((r.at(t) - focus).length() < 1e-4);

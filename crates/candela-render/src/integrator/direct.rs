@@ -102,7 +102,8 @@ pub fn estimate_direct(
             break;
         };
         let light = lights.get(index);
-        let mis = (mode == LightingMode::Mis && light.is_hittable()).then_some(light_samples as f32);
+        let mis =
+            (mode == LightingMode::Mis && light.is_hittable()).then_some(light_samples as f32);
         if let Some(sample) = light.sample_li(hit.p, u) {
             let mut s = sample;
             s.pdf *= pmf;

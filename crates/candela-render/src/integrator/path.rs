@@ -181,8 +181,8 @@ fn emitter_weight(
             let Some(index) = scene.lights.light_of_prim(hit.prim) else {
                 return 1.0;
             };
-            let light_pdf = scene.lights.pmf(index)
-                * scene.lights.get(index).pdf_li(prev.p, ray.dir, hit.p);
+            let light_pdf =
+                scene.lights.pmf(index) * scene.lights.get(index).pdf_li(prev.p, ray.dir, hit.p);
             bsdf_hit_weight(prev.bsdf_pdf, light_pdf, settings.light_samples)
         }
     }

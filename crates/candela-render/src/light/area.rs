@@ -73,7 +73,9 @@ impl AreaLight {
                 (b.x * v[0] + b.y * v[1] + (1.0 - b.x - b.y) * v[2], *normal)
             }
             AreaShape::Rect { shape, normal } => (shape.sample(u), *normal),
-            AreaShape::Sphere { center, radius } => return self.sample_sphere(p, *center, *radius, u),
+            AreaShape::Sphere { center, radius } => {
+                return self.sample_sphere(p, *center, *radius, u)
+            }
         };
         let d = q - p;
         let dist2 = d.length_squared();

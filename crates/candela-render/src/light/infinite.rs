@@ -50,4 +50,3 @@ impl AmbientLight {
         PI * PI * scene_radius * scene_radius * luminance(self.radiance)
     }
 }
-

@@ -159,7 +159,11 @@ pub fn surface_hit(
     // Emitters emit on the side their authored (shading) normals point to;
     // the files' winding does not always agree with those normals.
     let front_face = ns_raw.dot(wo) > 0.0;
-    let ng = if ng_raw.dot(wo) < 0.0 { -ng_raw } else { ng_raw };
+    let ng = if ng_raw.dot(wo) < 0.0 {
+        -ng_raw
+    } else {
+        ng_raw
+    };
     SurfaceHit {
         p,
         p_error,

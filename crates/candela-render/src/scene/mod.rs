@@ -10,12 +10,12 @@ mod lights;
 pub use geometry::{SphereData, SurfaceHit, TriangleData};
 
 use crate::accel::{Accel, AccelError, AccelInfo};
-use candela_bvh::BuildStrategy;
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
 use crate::camera::Camera;
 use crate::geometry::Ray;
 use crate::light::LightSet;
 pub use crate::material::Material;
+use candela_bvh::BuildStrategy;
 use candela_bvh::TraversalStats;
 use candela_scene::SceneDesc;
 use std::time::{Duration, Instant};
@@ -106,7 +106,9 @@ impl Scene {
         if materials.is_empty() {
             materials.push(Material::from_desc(&candela_scene::MaterialDesc::default_grey()).0);
         }
-        let (lo, hi) = desc.bounds().unwrap_or((glam::Vec3::ZERO, glam::Vec3::ZERO));
+        let (lo, hi) = desc
+            .bounds()
+            .unwrap_or((glam::Vec3::ZERO, glam::Vec3::ZERO));
         let scene_radius = 0.5 * (hi - lo).length();
         let lights = lights::build_lights(desc, &triangles, &spheres, &materials, scene_radius);
         let start = Instant::now();

@@ -176,7 +176,13 @@ pub struct Estimate {
 }
 
 /// Renders `desc` from its file camera and pools every sample.
-pub fn estimate(desc: &SceneDesc, integrator: IntegratorKind, size: u32, spp: u32, seed: u64) -> Estimate {
+pub fn estimate(
+    desc: &SceneDesc,
+    integrator: IntegratorKind,
+    size: u32,
+    spp: u32,
+    seed: u64,
+) -> Estimate {
     let opts = SceneOptions {
         width: size,
         height: size,
@@ -210,7 +216,10 @@ pub fn estimate(desc: &SceneDesc, integrator: IntegratorKind, size: u32, spp: u3
 /// Asserts `e.mean` is within `z` standard errors of `expected`, plus the
 /// f32 rounding of the sums (which matters only for zero-variance cases).
 pub fn assert_converges(label: &str, e: &Estimate, expected: f64, z: f64) {
-    eprintln!("{label}: {:.5} ± {:.5} (expected {expected:.5})", e.mean, e.std_error);
+    eprintln!(
+        "{label}: {:.5} ± {:.5} (expected {expected:.5})",
+        e.mean, e.std_error
+    );
     assert_eq!(e.invalid, 0, "{label}: NaN or infinite samples");
     let rounding = 1e-5 * expected.abs();
     let dev = ((e.mean - expected).abs() - rounding).max(0.0) / e.std_error.max(1e-12);
