@@ -18,6 +18,8 @@ mod area;
 mod delta;
 mod infinite;
 mod set;
+#[cfg(test)]
+mod tests;
 
 pub use area::{AreaLight, AreaShape};
 pub use delta::{DirectionalLight, PointLight, SpotLight};

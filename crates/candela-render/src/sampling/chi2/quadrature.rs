@@ -6,7 +6,7 @@ const MAX_DEPTH: u32 = 10;
 /// far better than their Poisson noise at a million samples.
 const REL_TOL: f64 = 1e-6;
 /// Initial panels per axis, so that lobes narrower than a cell are seen.
-const PANELS: usize = 4;
+const PANELS: usize = 16;
 
 /// ∫∫ f(s, t) over `[s0, s1] × [t0, t1]`, integrating t inside s.
 pub(crate) fn integrate_2d(f: impl Fn(f64, f64) -> f64, s: (f64, f64), t: (f64, f64)) -> f64 {
