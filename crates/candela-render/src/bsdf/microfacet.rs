@@ -8,17 +8,19 @@
 //!   G1·G1, does not double-count shadowing by the same heights;
 //! - F the exact conductor Fresnel term per channel.
 //!
-//! Sampling draws a normal from D(h)·cos θh and reflects `wo` about it
-//! (Walter et al. 2007), giving the density D(h)·cos θh / (4 |wo·h|).
-//! Samples whose normal faces away from `wo` or whose reflection goes below
-//! the surface are rejected (`None`); `pdf` accounts for that loss, so the
-//! density integrates to less than 1 at grazing angles.
+//! Sampling draws a normal from the distribution of normals visible from
+//! `wo` (Heitz & d'Eon 2014, see `visible_normals.rs`) and reflects `wo`
+//! about it, giving the density G1(wo)·D(h) / (4 cos θo). Reflections that
+//! go below the surface are rejected (`None`); `pdf` accounts for that
+//! loss, so the density integrates to less than 1 at grazing angles.
 
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
 use super::fresnel::fresnel_conductor;
+use super::special::erfc;
+use super::visible_normals::sample_visible_normal;
 use super::{BsdfFlags, BsdfSample};
 
 /// The lobe's flags.
@@ -85,30 +87,6 @@ impl Beckmann {
     pub(crate) fn g2(&self, wo: Vec3, wi: Vec3) -> f32 {
         1.0 / (1.0 + self.lambda(wo) + self.lambda(wi))
     }
-
-    /// A normal distributed as D(h)·cos θh: tan²θ = −α² ln(1 − u0), φ = 2π u1.
-    pub(crate) fn sample_normal(&self, u: Vec2) -> Vec3 {
-        let tan2 = -self.alpha * self.alpha * (1.0 - u.x).ln();
-        let cos = 1.0 / (1.0 + tan2).sqrt();
-        let sin = (tan2 / (1.0 + tan2)).sqrt();
-        let (s, c) = (2.0 * PI * u.y).sin_cos();
-        Vec3::new(sin * c, sin * s, cos)
-    }
-}
-
-/// erfc(x) for x ≥ 0 with relative error below 1.2e-7 everywhere (the
-/// Chebyshev-fitted exponential form of Numerical Recipes, §6.2).
-fn erfc(x: f64) -> f64 {
-    let t = 1.0 / (1.0 + 0.5 * x);
-    let poly = -1.265_512_23
-        + t * (1.000_023_68
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_203_98
-                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    t * (-x * x + poly).exp()
 }
 
 /// Mirrors the pair to the side where `wo.z > 0` (two-sided shading);
@@ -144,16 +122,17 @@ pub(super) fn pdf(alpha: f32, wo: Vec3, wi: Vec3) -> f32 {
         return 0.0;
     }
     let h = (wo + wi).normalize();
-    Beckmann::new(alpha).d(h) * h.z / (4.0 * wo.dot(h))
+    let dist = Beckmann::new(alpha);
+    dist.d(h) / ((1.0 + dist.lambda(wo)) * 4.0 * wo.z)
 }
 
-/// Samples a normal from D·cos and reflects `wo` about it.
+/// Samples a visible normal and reflects `wo` about it.
 pub(super) fn sample(alpha: f32, eta: Vec3, k: Vec3, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
     let (up, _, sign) = to_upper(wo, Vec3::Z);
     if up.z <= 0.0 {
         return None;
     }
-    let h = Beckmann::new(alpha).sample_normal(u);
+    let h = sample_visible_normal(Beckmann::new(alpha).alpha, up, u);
     let cos_oh = up.dot(h);
     if cos_oh <= 0.0 {
         return None;
@@ -219,18 +198,6 @@ mod tests {
                     w.z
                 );
             }
-        }
-    }
-
-    #[test]
-    fn erfc_matches_tables() {
-        for (x, expected) in [
-            (0.0, 1.0),
-            (0.5, 0.479_500_122_186_953_5),
-            (1.0, 0.157_299_207_050_285_1),
-            (3.0, 2.209_049_699_858_544e-5),
-        ] {
-            assert!((erfc(x) - expected).abs() <= 2e-7 * expected, "erfc({x})");
         }
     }
 }

@@ -98,3 +98,25 @@ fn microfacet_is_two_sided_and_reciprocal() {
         / ((GOLD_ETA + 1.0).powf(2.0) + GOLD_K * GOLD_K);
     assert!((bsdf.albedo() - normal).abs().max_element() < 1e-5);
 }
+
+#[test]
+fn visible_normal_sampling_bounds_the_weight() {
+    // With F = 1 the weight f·cos/pdf of visible-normal sampling is
+    // G2(wo, wi) / G1(wo) ≤ 1: no fireflies even at grazing angles (plain
+    // D·cos sampling gives weights far above 1 there).
+    let mut sampler = crate::sampling::Sampler::new(crate::sampling::SamplerKind::Independent, 3);
+    for alpha in [0.05f32, 0.5, 1.0] {
+        let bsdf = furnace(alpha);
+        for wo in test_directions() {
+            for i in 0..5_000 {
+                let (u1, u2) = uniforms(&mut sampler, i);
+                if let Some(s) = bsdf.sample(wo, u1, u2) {
+                    assert!(
+                        s.weight().max_element() <= 1.0 + 1e-3,
+                        "α = {alpha}, wo = {wo:?}: {s:?}"
+                    );
+                }
+            }
+        }
+    }
+}

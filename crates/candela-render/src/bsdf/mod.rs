@@ -37,11 +37,13 @@ mod fresnel;
 mod microfacet;
 #[cfg(test)]
 mod microfacet_tests;
+mod special;
 mod specular;
 #[cfg(test)]
 mod specular_tests;
 #[cfg(test)]
 mod test_support;
+mod visible_normals;
 
 pub use flags::BsdfFlags;
 
@@ -112,7 +114,8 @@ pub enum Bsdf {
     /// Rough conductor: Beckmann microfacets, exact conductor Fresnel,
     /// height-correlated Smith masking-shadowing (see `microfacet.rs`).
     Microfacet {
-        /// Beckmann roughness α (RMS slope / √2 per axis); clamped to 1e-3.
+        /// Beckmann roughness α: the RMS microfacet slope (α/√2 per axis);
+        /// clamped to 1e-3.
         alpha: f32,
         /// Real part of the conductor's IOR, per channel.
         eta: Vec3,
