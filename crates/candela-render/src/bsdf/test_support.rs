@@ -36,7 +36,21 @@ pub(crate) fn uniforms(sampler: &mut Sampler, i: u32) -> (f32, Vec2) {
 /// Chi-square of `sample` against `pdf` at `wo` (delta samples count as
 /// failures: their directions are not part of the density).
 pub(crate) fn assert_chi2(name: &str, bsdf: &Bsdf, wo: Vec3) {
+    assert_chi2_with(name, bsdf, wo, 1_000_000, (21, 41));
+}
+
+/// [`assert_chi2`] with a given sample count (for costly samplers) and
+/// θ × φ resolution (finer for narrow lobes, so they span many cells).
+pub(crate) fn assert_chi2_with(
+    name: &str,
+    bsdf: &Bsdf,
+    wo: Vec3,
+    samples: usize,
+    resolution: (usize, usize),
+) {
     Chi2Test::sphere(&format!("{name} at wo = {wo:?}"))
+        .with_samples(samples)
+        .with_resolution(resolution.0, resolution.1)
         .run(
             |u| {
                 let s = bsdf.sample(wo, u[0], Vec2::new(u[1], u[2]))?;
