@@ -5,9 +5,8 @@ use glam::{Vec2, Vec3};
 use super::test_support::*;
 use super::Bsdf;
 
-const DIFFUSE: Bsdf = Bsdf::Diffuse {
-    albedo: Vec3::new(0.8, 0.5, 0.1),
-};
+const ALBEDO: Vec3 = Vec3::new(0.8, 0.5, 0.1);
+const DIFFUSE: Bsdf = Bsdf::Diffuse { albedo: ALBEDO };
 
 #[test]
 fn diffuse_sampling_matches_its_pdf() {
@@ -25,7 +24,7 @@ fn diffuse_samples_are_consistent() {
 
 #[test]
 fn diffuse_albedo_equals_its_reflectance() {
-    let Bsdf::Diffuse { albedo } = DIFFUSE;
+    let albedo = ALBEDO;
     for wo in test_directions() {
         // Cosine sampling cancels f·cos/pdf exactly: zero variance.
         let by_sampling = albedo_by_sampling(&DIFFUSE, wo, 20_000);

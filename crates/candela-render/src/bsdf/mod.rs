@@ -33,8 +33,17 @@ mod diffuse;
 #[cfg(test)]
 mod diffuse_tests;
 mod flags;
+mod fresnel;
+mod microfacet;
+#[cfg(test)]
+mod microfacet_tests;
+mod special;
+mod specular;
+#[cfg(test)]
+mod specular_tests;
 #[cfg(test)]
 mod test_support;
+mod visible_normals;
 
 pub use flags::BsdfFlags;
 
@@ -75,6 +84,44 @@ pub enum Bsdf {
         /// Directional-hemispherical reflectance, per channel in [0, 1].
         albedo: Vec3,
     },
+    /// Perfect specular reflection (delta), weight `reflectance`.
+    Mirror {
+        /// Reflected fraction per channel.
+        reflectance: Vec3,
+    },
+    /// Smooth dielectric (delta): reflects with the exact Fresnel
+    /// probability, refracts otherwise; total internal reflection reflects.
+    /// Reflection weight `reflectance`, refraction weight
+    /// `transmittance / η²` (radiance transport, see the module docs).
+    Glass {
+        /// Tint of the reflected light.
+        reflectance: Vec3,
+        /// Tint of the refracted light.
+        transmittance: Vec3,
+        /// Index of refraction of the inside (the −Z side) relative to the
+        /// outside.
+        ior: f32,
+    },
+    /// Refraction only (delta), no Fresnel reflection: CS184's
+    /// `RefractionBSDF`. Under total internal reflection `sample` returns
+    /// `None`, ending the path (the light is lost).
+    Refraction {
+        /// Tint of the refracted light.
+        transmittance: Vec3,
+        /// Index of refraction of the inside relative to the outside.
+        ior: f32,
+    },
+    /// Rough conductor: Beckmann microfacets, exact conductor Fresnel,
+    /// height-correlated Smith masking-shadowing (see `microfacet.rs`).
+    Microfacet {
+        /// Beckmann roughness α: the RMS microfacet slope (α/√2 per axis);
+        /// clamped to 1e-3.
+        alpha: f32,
+        /// Real part of the conductor's IOR, per channel.
+        eta: Vec3,
+        /// Imaginary part (extinction coefficient), per channel.
+        k: Vec3,
+    },
 }
 
 impl Bsdf {
@@ -82,13 +129,25 @@ impl Bsdf {
     pub fn flags(&self) -> BsdfFlags {
         match self {
             Bsdf::Diffuse { .. } => diffuse::FLAGS,
+            Bsdf::Mirror { .. } => specular::MIRROR_FLAGS,
+            Bsdf::Glass { .. } => specular::GLASS_FLAGS,
+            Bsdf::Refraction { .. } => specular::REFRACTION_FLAGS,
+            Bsdf::Microfacet { .. } => microfacet::FLAGS,
         }
+    }
+
+    /// Whether every lobe is a delta, so `f` and `pdf` are always zero and
+    /// light sampling is useless here.
+    pub fn is_specular(&self) -> bool {
+        !self.flags().is_non_specular()
     }
 
     /// The BSDF value for the pair (cosine excluded); zero for delta lobes.
     pub fn f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         match *self {
             Bsdf::Diffuse { albedo } => diffuse::f(albedo, wo, wi),
+            Bsdf::Mirror { .. } | Bsdf::Glass { .. } | Bsdf::Refraction { .. } => Vec3::ZERO,
+            Bsdf::Microfacet { alpha, eta, k } => microfacet::f(alpha, eta, k, wo, wi),
         }
     }
 
@@ -96,9 +155,18 @@ impl Bsdf {
     /// several), `u2` the direction. `None` when the sample carries no
     /// energy (e.g. a direction below the surface), which ends the path.
     pub fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
-        let _ = u1;
         match *self {
             Bsdf::Diffuse { albedo } => diffuse::sample(albedo, wo, u2),
+            Bsdf::Mirror { reflectance } => specular::sample_mirror(reflectance, wo),
+            Bsdf::Glass {
+                reflectance,
+                transmittance,
+                ior,
+            } => specular::sample_glass(reflectance, transmittance, ior, wo, u1),
+            Bsdf::Refraction { transmittance, ior } => {
+                specular::sample_refraction(transmittance, ior, wo)
+            }
+            Bsdf::Microfacet { alpha, eta, k } => microfacet::sample(alpha, eta, k, wo, u2),
         }
     }
 
@@ -107,13 +175,22 @@ impl Bsdf {
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         match *self {
             Bsdf::Diffuse { .. } => diffuse::pdf(wo, wi),
+            Bsdf::Mirror { .. } | Bsdf::Glass { .. } | Bsdf::Refraction { .. } => 0.0,
+            Bsdf::Microfacet { alpha, .. } => microfacet::pdf(alpha, wo, wi),
         }
     }
 
-    /// A representative colour for albedo AOVs and denoisers.
+    /// A representative colour for albedo AOVs and denoisers: the albedo,
+    /// the mirror's reflectance, the glass's transmittance (what one mostly
+    /// sees through it), the conductor's reflectance at normal incidence.
     pub fn albedo(&self) -> Vec3 {
         match *self {
             Bsdf::Diffuse { albedo } => albedo,
+            Bsdf::Mirror { reflectance } => reflectance,
+            Bsdf::Glass { transmittance, .. } | Bsdf::Refraction { transmittance, .. } => {
+                transmittance
+            }
+            Bsdf::Microfacet { eta, k, .. } => fresnel::fresnel_conductor(1.0, eta, k),
         }
     }
 }

@@ -36,7 +36,21 @@ pub(crate) fn uniforms(sampler: &mut Sampler, i: u32) -> (f32, Vec2) {
 /// Chi-square of `sample` against `pdf` at `wo` (delta samples count as
 /// failures: their directions are not part of the density).
 pub(crate) fn assert_chi2(name: &str, bsdf: &Bsdf, wo: Vec3) {
+    assert_chi2_with(name, bsdf, wo, 1_000_000, (21, 41));
+}
+
+/// [`assert_chi2`] with a given sample count (for costly samplers) and
+/// θ × φ resolution (finer for narrow lobes, so they span many cells).
+pub(crate) fn assert_chi2_with(
+    name: &str,
+    bsdf: &Bsdf,
+    wo: Vec3,
+    samples: usize,
+    resolution: (usize, usize),
+) {
     Chi2Test::sphere(&format!("{name} at wo = {wo:?}"))
+        .with_samples(samples)
+        .with_resolution(resolution.0, resolution.1)
         .run(
             |u| {
                 let s = bsdf.sample(wo, u[0], Vec2::new(u[1], u[2]))?;
@@ -134,4 +148,37 @@ pub(crate) fn assert_estimates_agree(what: &str, a: &Estimate, b: Vec3, b_error:
         a.mean,
         a.std_error
     );
+}
+
+/// ∫ g(wi) dωi over the hemisphere on the side of `wo`, by quadrature on a
+/// 16 × 32 grid of (θ, φ) cells each refined adaptively, so that glossy
+/// lobes narrower than the initial nodes are not missed (cells are 0.1 ×
+/// 0.2 rad, each starting with 4 × 4 Simpson panels).
+pub(crate) fn hemisphere_integral(wo: Vec3, g: impl Fn(Vec3) -> f32) -> f32 {
+    use crate::sampling::chi2::integrate_2d;
+    let side = if wo.z < 0.0 { -1.0 } else { 1.0 };
+    let (rows, cols) = (16, 32);
+    let (dt, dp) = (
+        std::f64::consts::FRAC_PI_2 / rows as f64,
+        2.0 * std::f64::consts::PI / cols as f64,
+    );
+    let mut total = 0.0;
+    for r in 0..rows {
+        for c in 0..cols {
+            total += integrate_2d(
+                |theta, phi| {
+                    let (s, co) = theta.sin_cos();
+                    let wi = Vec3::new(
+                        (s * phi.cos()) as f32,
+                        (s * phi.sin()) as f32,
+                        (side * co) as f32,
+                    );
+                    f64::from(g(wi)) * s
+                },
+                (r as f64 * dt, (r + 1) as f64 * dt),
+                (c as f64 * dp, (c + 1) as f64 * dp),
+            );
+        }
+    }
+    total as f32
 }

@@ -26,7 +26,7 @@ pub(crate) use gamma::chi2_p_value;
 use glam::{Vec2, Vec3};
 
 use super::{Sampler, SamplerKind};
-use quadrature::integrate_2d;
+pub(crate) use quadrature::integrate_2d;
 
 /// An upper bound on the number of chi-square tests in the crate, used for
 /// the Šidák correction; overestimating only makes each test stricter about

@@ -1,0 +1,132 @@
+//! Rough conductor: chi-square, consistency, and energy.
+
+use glam::Vec3;
+
+use super::test_support::*;
+use super::Bsdf;
+
+/// Gold-like complex IOR (RGB), as in CS184's scenes.
+const GOLD_ETA: Vec3 = Vec3::new(0.143, 0.375, 1.442);
+const GOLD_K: Vec3 = Vec3::new(3.983, 2.386, 1.603);
+
+fn gold(alpha: f32) -> Bsdf {
+    Bsdf::Microfacet {
+        alpha,
+        eta: GOLD_ETA,
+        k: GOLD_K,
+    }
+}
+
+/// A conductor with F = 1 exactly (purely imaginary IOR): a white furnace.
+fn furnace(alpha: f32) -> Bsdf {
+    Bsdf::Microfacet {
+        alpha,
+        eta: Vec3::ZERO,
+        k: Vec3::ONE,
+    }
+}
+
+#[test]
+fn microfacet_sampling_matches_its_pdf() {
+    for alpha in [0.05f32, 0.2, 0.6] {
+        for wo in test_directions() {
+            // Half a million samples: visible-normal sampling solves two
+            // equations per sample; narrow lobes get a finer grid so that
+            // they still fill many cells.
+            let resolution = if alpha < 0.1 { (81, 161) } else { (21, 41) };
+            assert_chi2_with(
+                &format!("beckmann α = {alpha}"),
+                &gold(alpha),
+                wo,
+                500_000,
+                resolution,
+            );
+        }
+    }
+}
+
+#[test]
+fn microfacet_samples_are_consistent() {
+    for alpha in [0.001f32, 0.05, 0.5, 1.0] {
+        for wo in test_directions() {
+            assert_samples_consistent(&gold(alpha), wo);
+        }
+    }
+}
+
+#[test]
+fn microfacet_albedo_by_sampling_matches_quadrature() {
+    for alpha in [0.1f32, 0.3, 0.7] {
+        let bsdf = gold(alpha);
+        for wo in test_directions() {
+            let channel = |c: usize| hemisphere_integral(wo, |wi| bsdf.f(wo, wi)[c] * wi.z.abs());
+            let quadrature = Vec3::new(channel(0), channel(1), channel(2));
+            let sampled = albedo_by_sampling(&bsdf, wo, 200_000);
+            // Quadrature error is far below 1e-3; sampling error is 5 σ.
+            assert_estimates_agree(
+                &format!("α = {alpha}, wo = {wo:?}"),
+                &sampled,
+                quadrature,
+                Vec3::splat(2e-4),
+            );
+        }
+    }
+}
+
+#[test]
+fn white_furnace_conductor_never_creates_energy() {
+    // With F = 1 single scattering can only lose energy (to masking), and a
+    // smooth surface loses little of it away from grazing angles.
+    for alpha in [0.1f32, 0.3, 0.7, 1.0] {
+        let bsdf = furnace(alpha);
+        for wo in test_directions() {
+            let albedo = hemisphere_integral(wo, |wi| bsdf.f(wo, wi).x * wi.z.abs());
+            assert!(albedo <= 1.0 + 1e-3, "α = {alpha}, wo = {wo:?}: {albedo}");
+            let sampled = albedo_by_sampling(&bsdf, wo, 50_000);
+            assert!(
+                sampled.mean.x <= 1.0 + 5.0 * sampled.std_error.x,
+                "α = {alpha}, wo = {wo:?}"
+            );
+            if alpha <= 0.3 && wo.z.abs() >= 0.5 {
+                assert!(albedo > 0.97, "α = {alpha}, wo = {wo:?}: {albedo}");
+            }
+        }
+    }
+}
+
+#[test]
+fn microfacet_is_two_sided_and_reciprocal() {
+    let bsdf = gold(0.3);
+    let wo = Vec3::new(0.3, -0.2, 0.93).normalize();
+    let wi = Vec3::new(-0.5, 0.1, 0.86).normalize();
+    let flip = |w: Vec3| Vec3::new(w.x, w.y, -w.z);
+    assert_eq!(bsdf.f(wo, wi), bsdf.f(flip(wo), flip(wi)));
+    assert!((bsdf.f(wo, wi) - bsdf.f(wi, wo)).abs().max_element() < 1e-5);
+    assert_eq!(bsdf.f(wo, flip(wi)), Vec3::ZERO);
+    assert!(!bsdf.is_specular() && bsdf.flags().is_non_specular());
+    let normal = ((GOLD_ETA - 1.0).powf(2.0) + GOLD_K * GOLD_K)
+        / ((GOLD_ETA + 1.0).powf(2.0) + GOLD_K * GOLD_K);
+    assert!((bsdf.albedo() - normal).abs().max_element() < 1e-5);
+}
+
+#[test]
+fn visible_normal_sampling_bounds_the_weight() {
+    // With F = 1 the weight f·cos/pdf of visible-normal sampling is
+    // G2(wo, wi) / G1(wo) ≤ 1: no fireflies even at grazing angles (plain
+    // D·cos sampling gives weights far above 1 there).
+    let mut sampler = crate::sampling::Sampler::new(crate::sampling::SamplerKind::Independent, 3);
+    for alpha in [0.05f32, 0.5, 1.0] {
+        let bsdf = furnace(alpha);
+        for wo in test_directions() {
+            for i in 0..5_000 {
+                let (u1, u2) = uniforms(&mut sampler, i);
+                if let Some(s) = bsdf.sample(wo, u1, u2) {
+                    assert!(
+                        s.weight().max_element() <= 1.0 + 1e-3,
+                        "α = {alpha}, wo = {wo:?}: {s:?}"
+                    );
+                }
+            }
+        }
+    }
+}
