@@ -24,21 +24,44 @@ impl Material {
     /// are returned by name so the caller can report them once.
     pub fn from_desc(desc: &MaterialDesc) -> (Material, Vec<Unsupported>) {
         let mut unsupported = Vec::new();
-        let bsdf = match &desc.bsdf {
+        let bsdf = match desc.bsdf {
             BsdfDesc::Diffuse { albedo } => Some(Bsdf::Diffuse {
                 albedo: albedo.clamp(Vec3::ZERO, Vec3::ONE),
             }),
-            BsdfDesc::Black => None,
-            other => {
-                unsupported.push(Unsupported(format!(
-                    "material '{}': {} BSDF (rendered as diffuse grey)",
-                    desc.name,
-                    bsdf_name(other)
-                )));
-                Some(Bsdf::Diffuse {
-                    albedo: Vec3::splat(0.5),
+            BsdfDesc::Mirror { reflectance } => Some(Bsdf::Mirror { reflectance }),
+            BsdfDesc::Glass {
+                reflectance,
+                transmittance,
+                roughness,
+                ior,
+            } => {
+                if roughness > 0.0 {
+                    unsupported.push(Unsupported(format!(
+                        "material '{}': rough glass (roughness {roughness}; rendered smooth)",
+                        desc.name
+                    )));
+                }
+                Some(Bsdf::Glass {
+                    reflectance,
+                    transmittance,
+                    ior,
                 })
             }
+            BsdfDesc::Refraction {
+                transmittance,
+                roughness,
+                ior,
+            } => {
+                if roughness > 0.0 {
+                    unsupported.push(Unsupported(format!(
+                        "material '{}': rough refraction (roughness {roughness}; rendered smooth)",
+                        desc.name
+                    )));
+                }
+                Some(Bsdf::Refraction { transmittance, ior })
+            }
+            BsdfDesc::Microfacet { alpha, eta, k } => Some(Bsdf::Microfacet { alpha, eta, k }),
+            BsdfDesc::Black => None,
         };
         if desc.diffuse_texture.is_some() {
             unsupported.push(Unsupported(format!(
@@ -53,16 +76,5 @@ impl Material {
     /// The BSDF at a hit point (where textures will be looked up).
     pub fn bsdf_at(&self, _hit: &SurfaceHit) -> Option<Bsdf> {
         self.bsdf
-    }
-}
-
-fn bsdf_name(desc: &BsdfDesc) -> &'static str {
-    match desc {
-        BsdfDesc::Diffuse { .. } => "diffuse",
-        BsdfDesc::Mirror { .. } => "mirror",
-        BsdfDesc::Glass { .. } => "glass",
-        BsdfDesc::Refraction { .. } => "refraction",
-        BsdfDesc::Microfacet { .. } => "microfacet",
-        BsdfDesc::Black => "black",
     }
 }

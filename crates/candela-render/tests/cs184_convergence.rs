@@ -21,14 +21,17 @@ const FALSE_ALARM: f64 = 1e-3;
 
 fn cs184(name: &str) -> Option<PathBuf> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    ["../../../shared/scenes/cs184", "../../../../shared/scenes/cs184"]
-        .iter()
-        .map(|d| root.join(d).join(name))
-        .find(|p| p.is_file())
-        .or_else(|| {
-            eprintln!("note: {name} not found next to the repository; test skipped");
-            None
-        })
+    [
+        "../../../shared/scenes/cs184",
+        "../../../../shared/scenes/cs184",
+    ]
+    .iter()
+    .map(|d| root.join(d).join(name))
+    .find(|p| p.is_file())
+    .or_else(|| {
+        eprintln!("note: {name} not found next to the repository; test skipped");
+        None
+    })
 }
 
 fn batches(scene: &Scene, lighting: LightingMode, bounces: u32, spp: u32) -> Vec<RgbImage> {
@@ -58,22 +61,33 @@ fn estimators_agree(file: &str, bounces: u32, spp: [u32; 3]) {
     let Some(path) = cs184(file) else {
         return;
     };
-    let desc = load(&path, &LoadOptions::default()).expect("scene loads").scene;
+    let desc = load(&path, &LoadOptions::default())
+        .expect("scene loads")
+        .scene;
     let opts = SceneOptions {
         width: 64,
         height: 48,
         ..Default::default()
     };
     let scene = Scene::build(&desc, &opts).expect("scene builds");
-    let modes = [LightingMode::Hemisphere, LightingMode::Light, LightingMode::Mis];
+    let modes = [
+        LightingMode::Hemisphere,
+        LightingMode::Light,
+        LightingMode::Mis,
+    ];
     let stats: Vec<BlockStats> = modes
         .iter()
         .zip(spp)
-        .map(|(&mode, spp)| BlockStats::from_batches(&batches(&scene, mode, bounces, spp), 8).unwrap())
+        .map(|(&mode, spp)| {
+            BlockStats::from_batches(&batches(&scene, mode, bounces, spp), 8).unwrap()
+        })
         .collect();
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
         let summary = z_test(&stats[i], &stats[j], FALSE_ALARM).unwrap().summary();
-        eprintln!("{file} -m {bounces}: {:?} vs {:?}: {summary:?}", modes[i], modes[j]);
+        eprintln!(
+            "{file} -m {bounces}: {:?} vs {:?}: {summary:?}",
+            modes[i], modes[j]
+        );
         assert!(
             summary.passed(),
             "{file} -m {bounces}: {:?} and {:?} disagree: {summary:?}",

@@ -23,9 +23,13 @@ fn hit_point(light: &AreaLight, p: Vec3, wi: Vec3) -> Option<Vec3> {
             let q = plane_hit(v[0], *normal)?;
             let area = |a: Vec3, b: Vec3, c: Vec3| (b - a).cross(c - a).dot(*normal);
             let total = area(v[0], v[1], v[2]);
-            let inside = [area(q, v[1], v[2]), area(v[0], q, v[2]), area(v[0], v[1], q)]
-                .iter()
-                .all(|&a| a / total >= 0.0);
+            let inside = [
+                area(q, v[1], v[2]),
+                area(v[0], q, v[2]),
+                area(v[0], v[1], q),
+            ]
+            .iter()
+            .all(|&a| a / total >= 0.0);
             inside.then_some(q)
         }
         AreaShape::Rect { shape, normal } => {
@@ -143,7 +147,13 @@ fn ambient_light_sampling_matches_its_pdf() {
             let s = sky.sample_li(Vec3::ZERO, Vec2::new(u[1], u[2]))?;
             Some((s.wi, s.pdf))
         },
-        |wi| if wi.y > 0.0 { sky.pdf_li(Vec3::ZERO, wi, Vec3::ZERO) } else { 0.0 },
+        |wi| {
+            if wi.y > 0.0 {
+                sky.pdf_li(Vec3::ZERO, wi, Vec3::ZERO)
+            } else {
+                0.0
+            }
+        },
     );
     outcome.assert_ok();
 }
@@ -175,5 +185,7 @@ fn one_sided_lights_are_dark_from_behind() {
         },
         radiance: Vec3::ONE,
     });
-    assert!(sphere.sample_li(Vec3::new(0.1, 0.0, 0.0), Vec2::splat(0.5)).is_none());
+    assert!(sphere
+        .sample_li(Vec3::new(0.1, 0.0, 0.0), Vec2::splat(0.5))
+        .is_none());
 }
