@@ -8,31 +8,17 @@
 //! a per-block z-test with a Bonferroni-corrected threshold compares the
 //! estimators (`candela_image::metrics::ztest`).
 
+mod common;
+
 use candela_image::metrics::ztest::{z_test, BlockStats};
 use candela_image::RgbImage;
 use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{load, LoadOptions};
-use std::path::PathBuf;
 
 const BATCHES: u64 = 16;
 const FALSE_ALARM: f64 = 1e-3;
-
-fn cs184(name: &str) -> Option<PathBuf> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    [
-        "../../../shared/scenes/cs184",
-        "../../../../shared/scenes/cs184",
-    ]
-    .iter()
-    .map(|d| root.join(d).join(name))
-    .find(|p| p.is_file())
-    .or_else(|| {
-        eprintln!("note: {name} not found next to the repository; test skipped");
-        None
-    })
-}
 
 fn batches(scene: &Scene, lighting: LightingMode, bounces: u32, spp: u32) -> Vec<RgbImage> {
     (0..BATCHES)
@@ -58,7 +44,7 @@ fn batches(scene: &Scene, lighting: LightingMode, bounces: u32, spp: u32) -> Vec
 }
 
 fn estimators_agree(file: &str, bounces: u32, spp: [u32; 3]) {
-    let Some(path) = cs184(file) else {
+    let Some(path) = common::cs184(file) else {
         return;
     };
     let desc = load(&path, &LoadOptions::default())
