@@ -13,12 +13,17 @@
 mod aabb;
 mod build;
 mod node;
+mod simd;
 mod traverse;
 mod validate;
+mod wide;
+mod wide_traverse;
+mod wide_validate;
 
 pub use aabb::Aabb;
 pub use node::Node;
 pub use traverse::{RayBoxQuery, StatsSink, TraversalStats};
+pub use wide::{Bvh4, Node4};
 
 use glam::Vec3;
 

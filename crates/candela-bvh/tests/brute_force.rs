@@ -5,7 +5,7 @@
 //! random. Closest-hit must return the brute-force distance and any-hit the
 //! brute-force verdict, for every ray.
 
-use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, RayBoxQuery, TraversalStats};
+use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, TraversalStats};
 use glam::Vec3;
 
 /// SplitMix64: a seeded generator, so every failure reproduces.
@@ -64,7 +64,13 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
             if let Err(e) = bvh.validate(boxes) {
                 panic!("{label} {strategy:?}/{max_leaf}: {e}");
             }
+            let wide = Bvh4::from_binary(bvh.clone());
+            if let Err(e) = wide.validate(boxes) {
+                panic!("{label} {strategy:?}/{max_leaf} (4-wide): {e}");
+            }
+            assert!(wide.depth() <= bvh.depth());
             let order = bvh.primitive_order();
+            assert_eq!(order, wide.primitive_order());
             let world = bvh.bounds();
             for k in 0..rays {
                 let o = if world.is_empty() {
@@ -203,6 +209,8 @@ fn huge_boxes_among_small_ones() {
     for s in [BuildStrategy::Sah, BuildStrategy::Median] {
         let bvh = Bvh::build(&boxes, &centroids, BuildOptions::with_strategy(s));
         bvh.validate(&boxes).unwrap();
+        let wide = Bvh4::from_binary(bvh.clone());
+        wide.validate(&boxes).unwrap();
         // Every ray starts inside the first huge box, so any-hit is always true.
         let order = bvh.primitive_order();
         for _ in 0..100 {
@@ -215,6 +223,10 @@ fn huge_boxes_among_small_ones() {
                 box_hit(o, d, &boxes[order[slot as usize] as usize], tm)
             });
             assert!(hit);
+            let hit4 = wide.any_hit(&q, f32::INFINITY, &mut (), |slot, tm| {
+                box_hit(o, d, &boxes[order[slot as usize] as usize], tm)
+            });
+            assert!(hit4);
         }
     }
 }

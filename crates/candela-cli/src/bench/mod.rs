@@ -9,7 +9,7 @@ mod timing;
 
 use anyhow::Result;
 use candela_bvh::BuildStrategy;
-use candela_render::accel::Accel;
+use candela_render::accel::{Accel, Layout};
 use candela_render::geometry::Ray;
 use clap::{Args, Subcommand, ValueEnum};
 use rayon::prelude::*;
@@ -44,6 +44,9 @@ pub struct RaysArgs {
     /// BVH build strategy.
     #[arg(long, value_enum, default_value_t = Strategy::Sah)]
     pub bvh: Strategy,
+    /// BVH node layout.
+    #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
+    pub layout: NodeLayout,
     /// Minimum seconds per timed measurement.
     #[arg(long, default_value_t = 1.0)]
     pub seconds: f64,
@@ -61,6 +64,27 @@ pub struct ScalingArgs {
     /// BVH build strategy.
     #[arg(long, value_enum, default_value_t = Strategy::Sah)]
     pub bvh: Strategy,
+    /// BVH node layout.
+    #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
+    pub layout: NodeLayout,
+}
+
+/// The node layout as a command-line value.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum NodeLayout {
+    /// Binary BVH, scalar box tests.
+    Binary,
+    /// 4-wide BVH, SIMD box tests.
+    Wide4,
+}
+
+impl From<NodeLayout> for Layout {
+    fn from(l: NodeLayout) -> Self {
+        match l {
+            NodeLayout::Binary => Layout::Binary,
+            NodeLayout::Wide4 => Layout::Wide4,
+        }
+    }
 }
 
 /// The build strategy as a command-line value.

@@ -3,7 +3,7 @@
 use super::files::{read_hits, read_rays, read_tri, Hits};
 use super::{report_line, throughput, RaysArgs};
 use anyhow::{bail, Result};
-use candela_render::accel::{Accel, TraversalStats};
+use candela_render::accel::{triangle_soup, Accel, TraversalStats};
 use candela_render::geometry::Ray;
 use glam::Vec3;
 
@@ -20,11 +20,14 @@ pub fn run(args: &RaysArgs) -> Result<()> {
         set.rays.len(),
         if set.kind == 0 { "primary" } else { "diffuse" }
     );
-    let accel = Accel::build_indexed(&mesh.positions, &mesh.indices, &[], args.bvh.into())?;
+    let soup = triangle_soup(&mesh.positions, &mesh.indices)?;
+    let accel = Accel::build_with_layout(&soup, &[], args.bvh.into(), args.layout.into());
+    drop(soup);
     let info = accel.info();
     println!(
-        "build ({:?}): {:.1} ms, {} nodes, depth {}, BVH {:.1} bytes/triangle, with triangle data {:.1} bytes/triangle",
+        "build ({:?}, {:?}): {:.1} ms, {} nodes, depth {}, BVH {:.1} bytes/triangle, with triangle data {:.1} bytes/triangle",
         args.bvh,
+        args.layout,
         info.build_seconds * 1e3,
         info.nodes,
         info.depth,

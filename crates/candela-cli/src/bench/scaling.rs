@@ -99,10 +99,11 @@ pub fn run(args: &ScalingArgs) -> Result<()> {
     for &size in &args.sizes {
         let tris = displaced_sphere(size);
         let b1 = one
-            .install(|| Accel::build(&tris, &[], args.bvh.into()))
+            .install(|| Accel::build_with_layout(&tris, &[], args.bvh.into(), args.layout.into()))
             .info()
             .build_seconds;
-        let accel = two.install(|| Accel::build(&tris, &[], args.bvh.into()));
+        let accel = two
+            .install(|| Accel::build_with_layout(&tris, &[], args.bvh.into(), args.layout.into()));
         let info = accel.info();
         let n = tris.len() as f64;
         let mut rates = Vec::new();

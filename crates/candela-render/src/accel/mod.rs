@@ -11,7 +11,7 @@
 
 use crate::geometry::Ray;
 use crate::shape::{intersect_sphere, intersect_triangle, sphere_uv, TriangleRay};
-use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, RayBoxQuery, StatsSink};
+use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, StatsSink};
 use glam::Vec3;
 use std::time::Instant;
 
@@ -64,6 +64,24 @@ pub struct AccelInfo {
     pub total_bytes: usize,
 }
 
+/// Which node layout traversal uses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Layout {
+    /// The binary BVH: 32-byte nodes, two scalar box tests per node.
+    Binary,
+    /// The binary BVH collapsed to 4-wide nodes tested with SIMD (faster
+    /// here; see the benchmark figures in the report).
+    #[default]
+    Wide4,
+}
+
+/// The hierarchy in the chosen layout.
+#[derive(Clone, Debug)]
+enum Tree {
+    Binary(Bvh),
+    Wide4(Bvh4),
+}
+
 /// One primitive in leaf order: triangle vertices, or a sphere stored as
 /// `[center, (radius, 0, 0), 0]`; `id >= n_tri` marks a sphere.
 #[derive(Clone, Copy, Debug)]
@@ -72,11 +90,34 @@ struct Prim {
     id: u32,
 }
 
+/// Expands an indexed mesh into one `[v0, v1, v2]` per triangle, checking
+/// every index.
+pub fn triangle_soup(
+    positions: &[Vec3],
+    indices: &[[u32; 3]],
+) -> Result<Vec<[Vec3; 3]>, AccelError> {
+    let vertex = |triangle: usize, i: u32| {
+        positions
+            .get(i as usize)
+            .copied()
+            .ok_or(AccelError::IndexOutOfRange {
+                triangle,
+                index: i,
+                vertices: positions.len(),
+            })
+    };
+    indices
+        .iter()
+        .enumerate()
+        .map(|(t, idx)| Ok([vertex(t, idx[0])?, vertex(t, idx[1])?, vertex(t, idx[2])?]))
+        .collect()
+}
+
 /// Triangles and spheres behind one BVH. Immutable and `Sync`: share it
 /// between render threads by reference.
 #[derive(Clone, Debug)]
 pub struct Accel {
-    bvh: Bvh,
+    tree: Tree,
     prims: Vec<Prim>,
     n_tri: u32,
     info: AccelInfo,
@@ -89,14 +130,23 @@ impl Accel {
         spheres: &[(Vec3, f32)],
         strategy: BuildStrategy,
     ) -> Self {
+        Self::build_with_layout(triangles, spheres, strategy, Layout::default())
+    }
+
+    /// [`Accel::build`] with a chosen node layout (for benchmarks and tests).
+    pub fn build_with_layout(
+        triangles: &[[Vec3; 3]],
+        spheres: &[(Vec3, f32)],
+        strategy: BuildStrategy,
+        layout: Layout,
+    ) -> Self {
         let start = Instant::now();
         let mut boxes: Vec<Aabb> = Vec::with_capacity(triangles.len() + spheres.len());
         boxes.extend(triangles.iter().map(|t| Aabb::from_points(t)));
-        boxes.extend(
-            spheres
-                .iter()
-                .map(|&(c, r)| Aabb::new(c - Vec3::splat(r.abs()), c + Vec3::splat(r.abs()))),
-        );
+        boxes.extend(spheres.iter().map(|&(c, r)| {
+            let r = Vec3::splat(r.abs());
+            Aabb::new(c - r, c + r)
+        }));
         let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
         let bvh = Bvh::build(&boxes, &centroids, BuildOptions::with_strategy(strategy));
         drop((boxes, centroids));
@@ -108,22 +158,37 @@ impl Accel {
                 Some(t) => Prim { v: *t, id },
                 None => {
                     let (c, r) = spheres[(id - n_tri) as usize];
-                    Prim {
-                        v: [c, Vec3::new(r.abs(), 0.0, 0.0), Vec3::ZERO],
-                        id,
-                    }
+                    let v = [c, Vec3::new(r.abs(), 0.0, 0.0), Vec3::ZERO];
+                    Prim { v, id }
                 }
             })
             .collect();
+        let (nodes, depth, bvh_bytes, tree) = match layout {
+            Layout::Binary => (
+                bvh.nodes().len(),
+                bvh.depth(),
+                bvh.bytes(),
+                Tree::Binary(bvh),
+            ),
+            Layout::Wide4 => {
+                let wide = Bvh4::from_binary(bvh);
+                (
+                    wide.nodes().len(),
+                    wide.depth(),
+                    wide.bytes(),
+                    Tree::Wide4(wide),
+                )
+            }
+        };
         let info = AccelInfo {
             build_seconds: start.elapsed().as_secs_f64(),
-            nodes: bvh.nodes().len(),
-            depth: bvh.depth(),
-            bvh_bytes: bvh.bytes(),
-            total_bytes: bvh.bytes() + prims.len() * std::mem::size_of::<Prim>(),
+            nodes,
+            depth,
+            bvh_bytes,
+            total_bytes: bvh_bytes + prims.len() * std::mem::size_of::<Prim>(),
         };
         Self {
-            bvh,
+            tree,
             prims,
             n_tri,
             info,
@@ -137,24 +202,11 @@ impl Accel {
         spheres: &[(Vec3, f32)],
         strategy: BuildStrategy,
     ) -> Result<Self, AccelError> {
-        let triangles = indices
-            .iter()
-            .enumerate()
-            .map(|(triangle, idx)| {
-                let vertex = |i: u32| {
-                    positions
-                        .get(i as usize)
-                        .copied()
-                        .ok_or(AccelError::IndexOutOfRange {
-                            triangle,
-                            index: i,
-                            vertices: positions.len(),
-                        })
-                };
-                Ok([vertex(idx[0])?, vertex(idx[1])?, vertex(idx[2])?])
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        Ok(Self::build(&triangles, spheres, strategy))
+        Ok(Self::build(
+            &triangle_soup(positions, indices)?,
+            spheres,
+            strategy,
+        ))
     }
 
     /// Build time, node count, depth and memory.
@@ -162,9 +214,13 @@ impl Accel {
         self.info
     }
 
-    /// The underlying BVH (for validation and statistics).
-    pub fn bvh(&self) -> &Bvh {
-        &self.bvh
+    /// Checks the hierarchy's invariants against the primitives' boxes
+    /// (in input id order, as built).
+    pub fn validate(&self, boxes: &[Aabb]) -> Result<(), String> {
+        match &self.tree {
+            Tree::Binary(b) => b.validate(boxes),
+            Tree::Wide4(w) => w.validate(boxes),
+        }
     }
 
     /// Number of triangles; sphere ids start here.
@@ -189,16 +245,11 @@ impl Accel {
         let q = RayBoxQuery::new(ray.origin, ray.dir);
         let tri_ray = TriangleRay::new(ray.origin, ray.dir);
         let mut bary = (0.0, 0.0);
-        let (slot, t) = self.bvh.closest_hit(&q, ray.t_max, stats, |slot, t_max| {
-            let p = &self.prims[slot as usize];
-            if p.id < self.n_tri {
-                let h = intersect_triangle(&tri_ray, &p.v, t_max)?;
-                bary = (h.b1, h.b2);
-                Some(h.t)
-            } else {
-                intersect_sphere(ray.origin, ray.dir, p.v[0], p.v[1].x, t_max)
-            }
-        })?;
+        let test = |slot: u32, t_max: f32| self.test(slot, ray, &tri_ray, t_max, &mut bary);
+        let (slot, t) = match &self.tree {
+            Tree::Binary(b) => b.closest_hit(&q, ray.t_max, stats, test),
+            Tree::Wide4(w) => w.closest_hit(&q, ray.t_max, stats, test),
+        }?;
         let p = &self.prims[slot as usize];
         if p.id >= self.n_tri {
             bary = sphere_uv(p.v[0], ray.at(t));
@@ -216,13 +267,31 @@ impl Accel {
     pub fn occluded_counted<S: StatsSink>(&self, ray: &Ray, stats: &mut S) -> bool {
         let q = RayBoxQuery::new(ray.origin, ray.dir);
         let tri_ray = TriangleRay::new(ray.origin, ray.dir);
-        self.bvh.any_hit(&q, ray.t_max, stats, |slot, t_max| {
-            let p = &self.prims[slot as usize];
-            if p.id < self.n_tri {
-                intersect_triangle(&tri_ray, &p.v, t_max).map(|h| h.t)
-            } else {
-                intersect_sphere(ray.origin, ray.dir, p.v[0], p.v[1].x, t_max)
-            }
-        })
+        let mut bary = (0.0, 0.0);
+        let test = |slot: u32, t_max: f32| self.test(slot, ray, &tri_ray, t_max, &mut bary);
+        match &self.tree {
+            Tree::Binary(b) => b.any_hit(&q, ray.t_max, stats, test),
+            Tree::Wide4(w) => w.any_hit(&q, ray.t_max, stats, test),
+        }
+    }
+
+    /// Intersects the primitive in `slot`; triangle barycentrics go to `bary`.
+    #[inline(always)]
+    fn test(
+        &self,
+        slot: u32,
+        ray: &Ray,
+        tri_ray: &TriangleRay,
+        t_max: f32,
+        bary: &mut (f32, f32),
+    ) -> Option<f32> {
+        let p = &self.prims[slot as usize];
+        if p.id < self.n_tri {
+            let h = intersect_triangle(tri_ray, &p.v, t_max)?;
+            *bary = (h.b1, h.b2);
+            Some(h.t)
+        } else {
+            intersect_sphere(ray.origin, ray.dir, p.v[0], p.v[1].x, t_max)
+        }
     }
 }

@@ -1,0 +1,125 @@
+//! Four f32 lanes: SSE on x86_64 (part of its baseline, so no run-time
+//! detection is needed), plain arrays elsewhere. Only what the 4-wide slab
+//! test uses. `min`/`max` return the *second* operand when either is NaN,
+//! like SSE's `minps`/`maxps`; the slab test relies on that to ignore NaNs.
+
+#[cfg(target_arch = "x86_64")]
+mod imp {
+    use std::arch::x86_64::*;
+
+    /// Four lanes in one SSE register.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F32x4(__m128);
+
+    // SAFETY (every `unsafe` below): SSE and SSE2 are always enabled on
+    // x86_64, and the only loads read a whole `&[f32; 4]`.
+    impl F32x4 {
+        #[inline(always)]
+        pub fn load(a: &[f32; 4]) -> Self {
+            Self(unsafe { _mm_loadu_ps(a.as_ptr()) })
+        }
+        #[inline(always)]
+        pub fn splat(x: f32) -> Self {
+            Self(unsafe { _mm_set1_ps(x) })
+        }
+        #[inline(always)]
+        pub fn sub(self, o: Self) -> Self {
+            Self(unsafe { _mm_sub_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn mul(self, o: Self) -> Self {
+            Self(unsafe { _mm_mul_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn min(self, o: Self) -> Self {
+            Self(unsafe { _mm_min_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn max(self, o: Self) -> Self {
+            Self(unsafe { _mm_max_ps(self.0, o.0) })
+        }
+        /// Bit `i` set where lane `i` of `self <= o`.
+        #[inline(always)]
+        pub fn le_mask(self, o: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmple_ps(self.0, o.0)) as u32 }
+        }
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 4] {
+            let mut out = [0.0f32; 4];
+            unsafe { _mm_storeu_ps(out.as_mut_ptr(), self.0) };
+            out
+        }
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+mod imp {
+    /// Four lanes as an array; the compiler vectorises what it can.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F32x4([f32; 4]);
+
+    impl F32x4 {
+        #[inline(always)]
+        pub fn load(a: &[f32; 4]) -> Self {
+            Self(*a)
+        }
+        #[inline(always)]
+        pub fn splat(x: f32) -> Self {
+            Self([x; 4])
+        }
+        #[inline(always)]
+        pub fn sub(self, o: Self) -> Self {
+            Self(std::array::from_fn(|i| self.0[i] - o.0[i]))
+        }
+        #[inline(always)]
+        pub fn mul(self, o: Self) -> Self {
+            Self(std::array::from_fn(|i| self.0[i] * o.0[i]))
+        }
+        #[inline(always)]
+        pub fn min(self, o: Self) -> Self {
+            Self(std::array::from_fn(|i| {
+                if self.0[i] < o.0[i] {
+                    self.0[i]
+                } else {
+                    o.0[i]
+                }
+            }))
+        }
+        #[inline(always)]
+        pub fn max(self, o: Self) -> Self {
+            Self(std::array::from_fn(|i| {
+                if self.0[i] > o.0[i] {
+                    self.0[i]
+                } else {
+                    o.0[i]
+                }
+            }))
+        }
+        #[inline(always)]
+        pub fn le_mask(self, o: Self) -> u32 {
+            (0..4).fold(0, |m, i| m | (((self.0[i] <= o.0[i]) as u32) << i))
+        }
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 4] {
+            self.0
+        }
+    }
+}
+
+pub(crate) use imp::F32x4;
+
+#[cfg(test)]
+mod tests {
+    use super::F32x4;
+
+    #[test]
+    fn lanes_and_nan_rules() {
+        let a = F32x4::load(&[1.0, f32::NAN, 3.0, -1.0]);
+        let b = F32x4::splat(2.0);
+        assert_eq!(a.min(b).to_array()[..1], [1.0]);
+        assert_eq!(a.min(b).to_array()[1], 2.0, "NaN yields the second operand");
+        assert_eq!(a.max(b).to_array()[1], 2.0);
+        assert_eq!(a.le_mask(b), 0b1001);
+        assert_eq!(a.sub(b).mul(b).to_array()[2], 2.0);
+    }
+}

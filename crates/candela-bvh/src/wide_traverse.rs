@@ -1,0 +1,178 @@
+//! Traversal of the 4-wide BVH: one SIMD slab test for four children, the
+//! hit children visited nearest first.
+
+use crate::simd::F32x4;
+use crate::traverse::{StatsSink, ROBUST_SCALE};
+use crate::{Bvh4, RayBoxQuery};
+
+/// Each node pushes at most three entries, and the build bounds the depth.
+const STACK_SIZE: usize = 3 * (crate::build::SAH_DEPTH_LIMIT as usize + 40);
+
+/// A pending subtree or leaf: reference, leaf count (0 for a node), entry distance.
+#[derive(Clone, Copy)]
+struct Entry {
+    child: u32,
+    count: u32,
+    t: f32,
+}
+
+/// The ray in 4-lane form, with the near plane chosen per axis by the
+/// direction's sign (so the slab test needs no min/max between planes).
+struct Ray4 {
+    origin: [F32x4; 3],
+    inv_dir: [F32x4; 3],
+    near_row: [usize; 3],
+}
+
+impl Ray4 {
+    #[inline(always)]
+    fn new(q: &RayBoxQuery) -> Self {
+        let (o, inv) = (q.origin(), q.inv_dir());
+        Self {
+            origin: [F32x4::splat(o.x), F32x4::splat(o.y), F32x4::splat(o.z)],
+            inv_dir: [
+                F32x4::splat(inv.x),
+                F32x4::splat(inv.y),
+                F32x4::splat(inv.z),
+            ],
+            near_row: [0, 1, 2].map(|a| if inv[a].is_sign_negative() { a + 3 } else { a }),
+        }
+    }
+
+    /// Entry distances and the mask of lanes entered within `[0, t_max]`.
+    /// NaNs (a flat box seen edge-on from its own plane) are dropped by the
+    /// operand order of `min`/`max`.
+    #[inline(always)]
+    fn enter(&self, b: &[[f32; 4]; 6], t_max: f32) -> ([f32; 4], u32) {
+        let mut near = F32x4::splat(0.0);
+        let mut far = F32x4::splat(t_max * ROBUST_SCALE);
+        for a in 0..3 {
+            let nr = self.near_row[a];
+            let fr = if nr >= 3 { nr - 3 } else { nr + 3 };
+            let tn = F32x4::load(&b[nr]).sub(self.origin[a]).mul(self.inv_dir[a]);
+            let tf = F32x4::load(&b[fr]).sub(self.origin[a]).mul(self.inv_dir[a]);
+            near = tn.max(near);
+            far = tf.min(far);
+        }
+        (near.to_array(), near.le_mask(far))
+    }
+}
+
+impl Bvh4 {
+    /// Closest hit; same contract as [`crate::Bvh::closest_hit`].
+    #[inline]
+    pub fn closest_hit<S: StatsSink>(
+        &self,
+        ray: &RayBoxQuery,
+        mut t_max: f32,
+        stats: &mut S,
+        mut test: impl FnMut(u32, f32) -> Option<f32>,
+    ) -> Option<(u32, f32)> {
+        let mut best = None;
+        self.walk(ray, &mut t_max, stats, |slot, t_max| {
+            if let Some(t) = test(slot, *t_max) {
+                *t_max = t;
+                best = Some((slot, t));
+            }
+            false
+        });
+        best
+    }
+
+    /// Any hit; same contract as [`crate::Bvh::any_hit`].
+    #[inline]
+    pub fn any_hit<S: StatsSink>(
+        &self,
+        ray: &RayBoxQuery,
+        mut t_max: f32,
+        stats: &mut S,
+        mut test: impl FnMut(u32, f32) -> Option<f32>,
+    ) -> bool {
+        self.walk(ray, &mut t_max, stats, |slot, t_max| {
+            test(slot, *t_max).is_some()
+        })
+    }
+
+    #[inline(always)]
+    fn walk<S: StatsSink>(
+        &self,
+        ray: &RayBoxQuery,
+        t_max: &mut f32,
+        stats: &mut S,
+        mut visit: impl FnMut(u32, &mut f32) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let r4 = Ray4::new(ray);
+        let mut stack = [Entry {
+            child: 0,
+            count: 0,
+            t: 0.0,
+        }; STACK_SIZE];
+        let mut sp = 0usize;
+        let mut item = Entry {
+            child: 0,
+            count: 0,
+            t: 0.0,
+        };
+        loop {
+            if item.count > 0 {
+                for slot in item.child..item.child + item.count {
+                    stats.prim();
+                    if visit(slot, t_max) {
+                        return true;
+                    }
+                }
+            } else {
+                stats.node();
+                let node = &self.nodes[item.child as usize];
+                let (dist, mask) = r4.enter(&node.bounds, *t_max);
+                if mask != 0 {
+                    // Hit lanes sorted far to near; the nearest is taken now.
+                    let mut hits = [Entry {
+                        child: 0,
+                        count: 0,
+                        t: 0.0,
+                    }; 4];
+                    let mut k = 0;
+                    let mut bits = mask;
+                    while bits != 0 {
+                        let lane = bits.trailing_zeros() as usize;
+                        bits &= bits - 1;
+                        let e = Entry {
+                            child: node.child[lane],
+                            count: node.count[lane],
+                            t: dist[lane],
+                        };
+                        let mut j = k;
+                        while j > 0 && hits[j - 1].t < e.t {
+                            hits[j] = hits[j - 1];
+                            j -= 1;
+                        }
+                        hits[j] = e;
+                        k += 1;
+                    }
+                    for e in &hits[..k - 1] {
+                        if sp < STACK_SIZE {
+                            stack[sp] = *e;
+                            sp += 1;
+                        }
+                    }
+                    item = hits[k - 1];
+                    continue;
+                }
+            }
+            loop {
+                if sp == 0 {
+                    return false;
+                }
+                sp -= 1;
+                if stack[sp].t <= *t_max * ROBUST_SCALE {
+                    item = stack[sp];
+                    break;
+                }
+            }
+        }
+    }
+}
