@@ -1,12 +1,15 @@
 //! Traversal of the 4-wide BVH: one SIMD slab test for four children, the
 //! hit children visited nearest first.
 
-use crate::simd::F32x4;
+use crate::simd::{prefetch, F32x4};
 use crate::traverse::{StatsSink, ROBUST_SCALE};
 use crate::{Bvh4, RayBoxQuery};
 
 /// Each node pushes at most three entries, and the build bounds the depth.
 const STACK_SIZE: usize = 3 * (crate::build::SAH_DEPTH_LIMIT as usize + 40);
+/// Trees up to this depth use a small stack, which is cheaper to set up per ray.
+const SHALLOW_DEPTH: u32 = 21;
+const SHALLOW_STACK: usize = 3 * SHALLOW_DEPTH as usize;
 
 /// A pending subtree or leaf: reference, leaf count (0 for a node), entry distance.
 #[derive(Clone, Copy)]
@@ -93,8 +96,25 @@ impl Bvh4 {
         })
     }
 
+    /// Picks the stack size from the tree depth.
     #[inline(always)]
     fn walk<S: StatsSink>(
+        &self,
+        ray: &RayBoxQuery,
+        t_max: &mut f32,
+        stats: &mut S,
+        visit: impl FnMut(u32, &mut f32) -> bool,
+    ) -> bool {
+        if self.depth <= SHALLOW_DEPTH {
+            self.walk_with::<SHALLOW_STACK, S>(ray, t_max, stats, visit)
+        } else {
+            self.walk_with::<STACK_SIZE, S>(ray, t_max, stats, visit)
+        }
+    }
+
+    /// The traversal loop; `N` stack entries suffice for the tree's depth.
+    #[inline(always)]
+    fn walk_with<const N: usize, S: StatsSink>(
         &self,
         ray: &RayBoxQuery,
         t_max: &mut f32,
@@ -109,7 +129,7 @@ impl Bvh4 {
             child: 0,
             count: 0,
             t: 0.0,
-        }; STACK_SIZE];
+        }; N];
         let mut sp = 0usize;
         let mut item = Entry {
             child: 0,
@@ -154,7 +174,10 @@ impl Bvh4 {
                         k += 1;
                     }
                     for e in &hits[..k - 1] {
-                        if sp < STACK_SIZE {
+                        if sp < N {
+                            if e.count == 0 {
+                                prefetch(&self.nodes[e.child as usize]);
+                            }
                             stack[sp] = *e;
                             sp += 1;
                         }
