@@ -170,6 +170,8 @@ fn median_split(ctx: &Ctx, order: &mut [u32], cbounds: &Aabb) -> usize {
 fn sah_split(ctx: &Ctx, order: &mut [u32], bounds: &Aabb, cbounds: &Aabb) -> Option<usize> {
     let n = order.len();
     let ext = cbounds.extent();
+    let block = ctx.opts.leaf_block.max(1) as u32;
+    let blocks = |count: u32| count.div_ceil(block) as f32;
     let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, first bin on the right)
     for axis in 0..3 {
         if ext[axis].is_nan() || ext[axis] <= 0.0 || !ext[axis].is_finite() {
@@ -188,7 +190,7 @@ fn sah_split(ctx: &Ctx, order: &mut [u32], bounds: &Aabb, cbounds: &Aabb) -> Opt
         for b in (1..BINS).rev() {
             acc = acc.union(bins[b].0);
             cnt += bins[b].1;
-            right_cost[b] = acc.half_area() * cnt as f32;
+            right_cost[b] = acc.half_area() * blocks(cnt);
         }
         let (mut acc, mut cnt) = (Aabb::EMPTY, 0u32);
         for b in 1..BINS {
@@ -197,7 +199,7 @@ fn sah_split(ctx: &Ctx, order: &mut [u32], bounds: &Aabb, cbounds: &Aabb) -> Opt
             if cnt == 0 || cnt as usize == n {
                 continue;
             }
-            let cost = acc.half_area() * cnt as f32 + right_cost[b];
+            let cost = acc.half_area() * blocks(cnt) + right_cost[b];
             if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, b));
             }
@@ -207,7 +209,7 @@ fn sah_split(ctx: &Ctx, order: &mut [u32], bounds: &Aabb, cbounds: &Aabb) -> Opt
     let area = bounds.half_area();
     let o = &ctx.opts;
     let split_cost = o.traversal_cost + o.intersection_cost * cost / area;
-    let leaf_cost = o.intersection_cost * n as f32;
+    let leaf_cost = o.intersection_cost * blocks(n as u32);
     if !split_cost.is_finite() || (n <= o.max_leaf_size && leaf_cost <= split_cost) {
         return None;
     }

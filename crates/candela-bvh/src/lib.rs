@@ -13,7 +13,7 @@
 mod aabb;
 mod build;
 mod node;
-mod simd;
+pub mod simd;
 mod traverse;
 mod validate;
 mod wide;
@@ -52,6 +52,10 @@ pub struct BuildOptions {
     pub traversal_cost: f32,
     /// Cost of one primitive test.
     pub intersection_cost: f32,
+    /// Primitives are tested in blocks of this many (e.g. 4 with SIMD
+    /// packets), so the SAH charges a leaf `ceil(n / block)` tests and
+    /// prefers leaf sizes that fill whole blocks.
+    pub leaf_block: usize,
 }
 
 impl Default for BuildOptions {
@@ -61,6 +65,7 @@ impl Default for BuildOptions {
             max_leaf_size: 8,
             traversal_cost: 1.0,
             intersection_cost: 1.0,
+            leaf_block: 1,
         }
     }
 }

@@ -1,9 +1,10 @@
-//! Four f32 lanes: SSE on x86_64 (part of its baseline, so no run-time
+//! Four f32 lanes (shared with the renderer's 4-triangle packets): SSE on x86_64 (part of its baseline, so no run-time
 //! detection is needed), plain arrays elsewhere. Only what the 4-wide slab
 //! test uses. `min`/`max` return the *second* operand when either is NaN,
 //! like SSE's `minps`/`maxps`; the slab test relies on that to ignore NaNs.
 
 #[cfg(target_arch = "x86_64")]
+#[allow(missing_docs)] // each method is the lane-wise operation its name says
 mod imp {
     use std::arch::x86_64::*;
 
@@ -38,10 +39,28 @@ mod imp {
         pub fn max(self, o: Self) -> Self {
             Self(unsafe { _mm_max_ps(self.0, o.0) })
         }
+        #[inline(always)]
+        pub fn add(self, o: Self) -> Self {
+            Self(unsafe { _mm_add_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn div(self, o: Self) -> Self {
+            Self(unsafe { _mm_div_ps(self.0, o.0) })
+        }
         /// Bit `i` set where lane `i` of `self <= o`.
         #[inline(always)]
         pub fn le_mask(self, o: Self) -> u32 {
             unsafe { _mm_movemask_ps(_mm_cmple_ps(self.0, o.0)) as u32 }
+        }
+        /// Bit `i` set where lane `i` of `self < o`.
+        #[inline(always)]
+        pub fn lt_mask(self, o: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmplt_ps(self.0, o.0)) as u32 }
+        }
+        /// Bit `i` set where lane `i` of `self != o` (true for NaN).
+        #[inline(always)]
+        pub fn ne_mask(self, o: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmpneq_ps(self.0, o.0)) as u32 }
         }
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {
@@ -53,6 +72,7 @@ mod imp {
 }
 
 #[cfg(not(target_arch = "x86_64"))]
+#[allow(missing_docs)]
 mod imp {
     /// Four lanes as an array; the compiler vectorises what it can.
     #[derive(Clone, Copy, Debug)]
@@ -96,8 +116,24 @@ mod imp {
             }))
         }
         #[inline(always)]
+        pub fn add(self, o: Self) -> Self {
+            Self(std::array::from_fn(|i| self.0[i] + o.0[i]))
+        }
+        #[inline(always)]
+        pub fn div(self, o: Self) -> Self {
+            Self(std::array::from_fn(|i| self.0[i] / o.0[i]))
+        }
+        #[inline(always)]
         pub fn le_mask(self, o: Self) -> u32 {
             (0..4).fold(0, |m, i| m | (((self.0[i] <= o.0[i]) as u32) << i))
+        }
+        #[inline(always)]
+        pub fn lt_mask(self, o: Self) -> u32 {
+            (0..4).fold(0, |m, i| m | (((self.0[i] < o.0[i]) as u32) << i))
+        }
+        #[inline(always)]
+        pub fn ne_mask(self, o: Self) -> u32 {
+            (0..4).fold(0, |m, i| m | (((self.0[i] != o.0[i]) as u32) << i))
         }
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {
@@ -106,11 +142,11 @@ mod imp {
     }
 }
 
-pub(crate) use imp::F32x4;
+pub use imp::F32x4;
 
 /// Hints the CPU to start loading `x` into cache (a node pushed for later).
 #[inline(always)]
-pub(crate) fn prefetch<T>(x: &T) {
+pub fn prefetch<T>(x: &T) {
     #[cfg(target_arch = "x86_64")]
     // SAFETY: a prefetch never faults and has no visible effect; SSE is baseline.
     unsafe {
@@ -134,5 +170,8 @@ mod tests {
         assert_eq!(a.max(b).to_array()[1], 2.0);
         assert_eq!(a.le_mask(b), 0b1001);
         assert_eq!(a.sub(b).mul(b).to_array()[2], 2.0);
+        assert_eq!(a.add(b).div(b).to_array()[0], 1.5);
+        assert_eq!(a.lt_mask(b), 0b1001);
+        assert_eq!(a.ne_mask(F32x4::splat(3.0)), 0b1011);
     }
 }

@@ -24,6 +24,13 @@ pub trait StatsSink {
     fn node(&mut self);
     /// A primitive was tested.
     fn prim(&mut self);
+    /// `n` primitives were tested.
+    #[inline(always)]
+    fn prims(&mut self, n: u32) {
+        for _ in 0..n {
+            self.prim();
+        }
+    }
 }
 
 impl StatsSink for () {
@@ -51,6 +58,10 @@ impl StatsSink for TraversalStats {
     #[inline(always)]
     fn prim(&mut self) {
         self.prims_tested += 1;
+    }
+    #[inline(always)]
+    fn prims(&mut self, n: u32) {
+        self.prims_tested += n as u64;
     }
 }
 

@@ -72,14 +72,53 @@ impl Bvh4 {
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> Option<(u32, f32)> {
         let mut best = None;
-        self.walk(ray, &mut t_max, stats, |slot, t_max| {
-            if let Some(t) = test(slot, *t_max) {
+        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
+            for slot in first..first + count {
+                if let Some(t) = test(slot, *t_max) {
+                    *t_max = t;
+                    best = Some((slot, t));
+                }
+            }
+            false
+        });
+        best
+    }
+
+    /// Closest hit with a whole leaf per call, for callers that test
+    /// primitives in SIMD blocks: `test(first, count, t_max)` intersects
+    /// slots `first .. first + count` and returns the closest `(slot, t)`
+    /// with `t < t_max`.
+    #[inline]
+    pub fn closest_hit_leaves<S: StatsSink>(
+        &self,
+        ray: &RayBoxQuery,
+        mut t_max: f32,
+        stats: &mut S,
+        mut test: impl FnMut(u32, u32, f32) -> Option<(u32, f32)>,
+    ) -> Option<(u32, f32)> {
+        let mut best = None;
+        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
+            if let Some((slot, t)) = test(first, count, *t_max) {
                 *t_max = t;
                 best = Some((slot, t));
             }
             false
         });
         best
+    }
+
+    /// Any hit with a whole leaf per call; see [`Bvh4::closest_hit_leaves`].
+    #[inline]
+    pub fn any_hit_leaves<S: StatsSink>(
+        &self,
+        ray: &RayBoxQuery,
+        mut t_max: f32,
+        stats: &mut S,
+        mut test: impl FnMut(u32, u32, f32) -> bool,
+    ) -> bool {
+        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
+            test(first, count, *t_max)
+        })
     }
 
     /// Any hit; same contract as [`crate::Bvh::any_hit`].
@@ -91,8 +130,8 @@ impl Bvh4 {
         stats: &mut S,
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> bool {
-        self.walk(ray, &mut t_max, stats, |slot, t_max| {
-            test(slot, *t_max).is_some()
+        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
+            (first..first + count).any(|slot| test(slot, *t_max).is_some())
         })
     }
 
@@ -103,7 +142,7 @@ impl Bvh4 {
         ray: &RayBoxQuery,
         t_max: &mut f32,
         stats: &mut S,
-        visit: impl FnMut(u32, &mut f32) -> bool,
+        visit: impl FnMut(u32, u32, &mut f32) -> bool,
     ) -> bool {
         if self.depth <= SHALLOW_DEPTH {
             self.walk_with::<SHALLOW_STACK, S>(ray, t_max, stats, visit)
@@ -119,7 +158,7 @@ impl Bvh4 {
         ray: &RayBoxQuery,
         t_max: &mut f32,
         stats: &mut S,
-        mut visit: impl FnMut(u32, &mut f32) -> bool,
+        mut visit: impl FnMut(u32, u32, &mut f32) -> bool,
     ) -> bool {
         if self.nodes.is_empty() {
             return false;
@@ -138,11 +177,9 @@ impl Bvh4 {
         };
         loop {
             if item.count > 0 {
-                for slot in item.child..item.child + item.count {
-                    stats.prim();
-                    if visit(slot, t_max) {
-                        return true;
-                    }
+                stats.prims(item.count);
+                if visit(item.child, item.count, t_max) {
+                    return true;
                 }
             } else {
                 stats.node();
