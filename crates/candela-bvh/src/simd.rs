@@ -24,11 +24,11 @@ mod imp {
             Self(unsafe { _mm_set1_ps(x) })
         }
         #[inline(always)]
-        pub fn sub(self, o: Self) -> Self {
+        pub fn lane_sub(self, o: Self) -> Self {
             Self(unsafe { _mm_sub_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub fn mul(self, o: Self) -> Self {
+        pub fn lane_mul(self, o: Self) -> Self {
             Self(unsafe { _mm_mul_ps(self.0, o.0) })
         }
         #[inline(always)]
@@ -40,11 +40,11 @@ mod imp {
             Self(unsafe { _mm_max_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub fn add(self, o: Self) -> Self {
+        pub fn lane_add(self, o: Self) -> Self {
             Self(unsafe { _mm_add_ps(self.0, o.0) })
         }
         #[inline(always)]
-        pub fn div(self, o: Self) -> Self {
+        pub fn lane_div(self, o: Self) -> Self {
             Self(unsafe { _mm_div_ps(self.0, o.0) })
         }
         /// Bit `i` set where lane `i` of `self <= o`.
@@ -88,11 +88,11 @@ mod imp {
             Self([x; 4])
         }
         #[inline(always)]
-        pub fn sub(self, o: Self) -> Self {
+        pub fn lane_sub(self, o: Self) -> Self {
             Self(std::array::from_fn(|i| self.0[i] - o.0[i]))
         }
         #[inline(always)]
-        pub fn mul(self, o: Self) -> Self {
+        pub fn lane_mul(self, o: Self) -> Self {
             Self(std::array::from_fn(|i| self.0[i] * o.0[i]))
         }
         #[inline(always)]
@@ -116,11 +116,11 @@ mod imp {
             }))
         }
         #[inline(always)]
-        pub fn add(self, o: Self) -> Self {
+        pub fn lane_add(self, o: Self) -> Self {
             Self(std::array::from_fn(|i| self.0[i] + o.0[i]))
         }
         #[inline(always)]
-        pub fn div(self, o: Self) -> Self {
+        pub fn lane_div(self, o: Self) -> Self {
             Self(std::array::from_fn(|i| self.0[i] / o.0[i]))
         }
         #[inline(always)]
@@ -143,6 +143,22 @@ mod imp {
 }
 
 pub use imp::F32x4;
+
+macro_rules! lane_op {
+    ($trait:ident, $method:ident, $lane:ident) => {
+        impl std::ops::$trait for F32x4 {
+            type Output = F32x4;
+            #[inline(always)]
+            fn $method(self, o: F32x4) -> F32x4 {
+                self.$lane(o)
+            }
+        }
+    };
+}
+lane_op!(Add, add, lane_add);
+lane_op!(Sub, sub, lane_sub);
+lane_op!(Mul, mul, lane_mul);
+lane_op!(Div, div, lane_div);
 
 /// Hints the CPU to start loading `x` into cache (a node pushed for later).
 #[inline(always)]
@@ -169,8 +185,8 @@ mod tests {
         assert_eq!(a.min(b).to_array()[1], 2.0, "NaN yields the second operand");
         assert_eq!(a.max(b).to_array()[1], 2.0);
         assert_eq!(a.le_mask(b), 0b1001);
-        assert_eq!(a.sub(b).mul(b).to_array()[2], 2.0);
-        assert_eq!(a.add(b).div(b).to_array()[0], 1.5);
+        assert_eq!(((a - b) * b).to_array()[2], 2.0);
+        assert_eq!(((a + b) / b).to_array()[0], 1.5);
         assert_eq!(a.lt_mask(b), 0b1001);
         assert_eq!(a.ne_mask(F32x4::splat(3.0)), 0b1011);
     }

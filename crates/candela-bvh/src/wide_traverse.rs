@@ -52,8 +52,8 @@ impl Ray4 {
         for a in 0..3 {
             let nr = self.near_row[a];
             let fr = if nr >= 3 { nr - 3 } else { nr + 3 };
-            let tn = F32x4::load(&b[nr]).sub(self.origin[a]).mul(self.inv_dir[a]);
-            let tf = F32x4::load(&b[fr]).sub(self.origin[a]).mul(self.inv_dir[a]);
+            let tn = (F32x4::load(&b[nr]) - self.origin[a]) * self.inv_dir[a];
+            let tf = (F32x4::load(&b[fr]) - self.origin[a]) * self.inv_dir[a];
             near = tn.max(near);
             far = tf.min(far);
         }
