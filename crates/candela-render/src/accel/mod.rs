@@ -10,15 +10,18 @@
 //! [`crate::shape::sphere_surface_point`].
 
 use crate::geometry::Ray;
-use crate::shape::{intersect_sphere, intersect_triangle, sphere_uv, TriangleRay};
+use crate::shape::{intersect_sphere, intersect_triangle, sphere_uv, TriangleRay, TriangleRay4};
 use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, StatsSink};
 use glam::Vec3;
 use std::time::Instant;
 
 pub use candela_bvh::TraversalStats;
 
+mod packets;
 #[cfg(test)]
 mod tests;
+
+use packets::{LeafBlocks, LeafHit};
 
 /// A closest hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -78,8 +81,10 @@ pub enum Layout {
 /// The hierarchy in the chosen layout.
 #[derive(Clone, Debug)]
 enum Tree {
-    Binary(Bvh),
-    Wide4(Bvh4),
+    /// Primitives one per slot.
+    Binary(Bvh, Vec<Prim>),
+    /// Primitives in SIMD blocks per leaf.
+    Wide4(Bvh4, LeafBlocks),
 }
 
 /// One primitive in leaf order: triangle vertices, or a sphere stored as
@@ -118,7 +123,6 @@ pub fn triangle_soup(
 #[derive(Clone, Debug)]
 pub struct Accel {
     tree: Tree,
-    prims: Vec<Prim>,
     n_tri: u32,
     info: AccelInfo,
 }
@@ -148,35 +152,53 @@ impl Accel {
             Aabb::new(c - r, c + r)
         }));
         let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
-        let bvh = Bvh::build(&boxes, &centroids, BuildOptions::with_strategy(strategy));
+        let opts = BuildOptions {
+            // The 4-wide layout tests leaves four primitives at a time.
+            leaf_block: if layout == Layout::Wide4 { 4 } else { 1 },
+            ..BuildOptions::with_strategy(strategy)
+        };
+        let bvh = Bvh::build(&boxes, &centroids, opts);
         drop((boxes, centroids));
         let n_tri = triangles.len() as u32;
-        let prims: Vec<Prim> = bvh
-            .primitive_order()
-            .iter()
-            .map(|&id| match triangles.get(id as usize) {
-                Some(t) => Prim { v: *t, id },
-                None => {
-                    let (c, r) = spheres[(id - n_tri) as usize];
-                    let v = [c, Vec3::new(r.abs(), 0.0, 0.0), Vec3::ZERO];
-                    Prim { v, id }
-                }
-            })
-            .collect();
-        let (nodes, depth, bvh_bytes, tree) = match layout {
-            Layout::Binary => (
-                bvh.nodes().len(),
-                bvh.depth(),
-                bvh.bytes(),
-                Tree::Binary(bvh),
-            ),
+        let prim = |id: u32| match triangles.get(id as usize) {
+            Some(t) => Ok(*t),
+            None => {
+                let (c, r) = spheres[(id - n_tri) as usize];
+                Err((c, r.abs()))
+            }
+        };
+        let (nodes, depth, bvh_bytes, prim_bytes, tree) = match layout {
+            Layout::Binary => {
+                let prims: Vec<Prim> = bvh
+                    .primitive_order()
+                    .iter()
+                    .map(|&id| match prim(id) {
+                        Ok(v) => Prim { v, id },
+                        Err((c, r)) => Prim {
+                            v: [c, Vec3::new(r, 0.0, 0.0), Vec3::ZERO],
+                            id,
+                        },
+                    })
+                    .collect();
+                let pb = prims.len() * std::mem::size_of::<Prim>();
+                (
+                    bvh.nodes().len(),
+                    bvh.depth(),
+                    bvh.bytes(),
+                    pb,
+                    Tree::Binary(bvh, prims),
+                )
+            }
             Layout::Wide4 => {
                 let wide = Bvh4::from_binary(bvh);
+                let leaves = LeafBlocks::new(&wide, prim);
+                let pb = leaves.bytes();
                 (
                     wide.nodes().len(),
                     wide.depth(),
                     wide.bytes(),
-                    Tree::Wide4(wide),
+                    pb,
+                    Tree::Wide4(wide, leaves),
                 )
             }
         };
@@ -185,14 +207,9 @@ impl Accel {
             nodes,
             depth,
             bvh_bytes,
-            total_bytes: bvh_bytes + prims.len() * std::mem::size_of::<Prim>(),
+            total_bytes: bvh_bytes + prim_bytes,
         };
-        Self {
-            tree,
-            prims,
-            n_tri,
-            info,
-        }
+        Self { tree, n_tri, info }
     }
 
     /// Builds over an indexed mesh (`indices` name three `positions` each).
@@ -218,8 +235,8 @@ impl Accel {
     /// (in input id order, as built).
     pub fn validate(&self, boxes: &[Aabb]) -> Result<(), String> {
         match &self.tree {
-            Tree::Binary(b) => b.validate(boxes),
-            Tree::Wide4(w) => w.validate(boxes),
+            Tree::Binary(b, _) => b.validate(boxes),
+            Tree::Wide4(w, _) => w.validate(boxes),
         }
     }
 
@@ -244,22 +261,38 @@ impl Accel {
     pub fn intersect_counted<S: StatsSink>(&self, ray: &Ray, stats: &mut S) -> Option<Hit> {
         let q = RayBoxQuery::new(ray.origin, ray.dir);
         let tri_ray = TriangleRay::new(ray.origin, ray.dir);
-        let mut bary = (0.0, 0.0);
-        let test = |slot: u32, t_max: f32| self.test(slot, ray, &tri_ray, t_max, &mut bary);
-        let (slot, t) = match &self.tree {
-            Tree::Binary(b) => b.closest_hit(&q, ray.t_max, stats, test),
-            Tree::Wide4(w) => w.closest_hit(&q, ray.t_max, stats, test),
-        }?;
-        let p = &self.prims[slot as usize];
-        if p.id >= self.n_tri {
-            bary = sphere_uv(p.v[0], ray.at(t));
+        match &self.tree {
+            Tree::Binary(bvh, prims) => {
+                let mut bary = (0.0, 0.0);
+                let test = |slot: u32, t_max: f32| {
+                    self.test(&prims[slot as usize], ray, &tri_ray, t_max, &mut bary)
+                };
+                let (slot, t) = bvh.closest_hit(&q, ray.t_max, stats, test)?;
+                let p = &prims[slot as usize];
+                if p.id >= self.n_tri {
+                    bary = sphere_uv(p.v[0], ray.at(t));
+                }
+                Some(Hit {
+                    t,
+                    prim: p.id,
+                    b1: bary.0,
+                    b2: bary.1,
+                })
+            }
+            Tree::Wide4(bvh, leaves) => {
+                let tr4 = TriangleRay4::new(&tri_ray);
+                let mut hit = LeafHit::default();
+                let test =
+                    |first, count, t_max| leaves.closest(first, count, ray, &tr4, t_max, &mut hit);
+                let (_, t) = bvh.closest_hit_leaves(&q, ray.t_max, stats, test)?;
+                Some(Hit {
+                    t,
+                    prim: hit.id,
+                    b1: hit.b1,
+                    b2: hit.b2,
+                })
+            }
         }
-        Some(Hit {
-            t,
-            prim: p.id,
-            b1: bary.0,
-            b2: bary.1,
-        })
     }
 
     /// [`Accel::occluded`] with statistics.
@@ -267,25 +300,32 @@ impl Accel {
     pub fn occluded_counted<S: StatsSink>(&self, ray: &Ray, stats: &mut S) -> bool {
         let q = RayBoxQuery::new(ray.origin, ray.dir);
         let tri_ray = TriangleRay::new(ray.origin, ray.dir);
-        let mut bary = (0.0, 0.0);
-        let test = |slot: u32, t_max: f32| self.test(slot, ray, &tri_ray, t_max, &mut bary);
         match &self.tree {
-            Tree::Binary(b) => b.any_hit(&q, ray.t_max, stats, test),
-            Tree::Wide4(w) => w.any_hit(&q, ray.t_max, stats, test),
+            Tree::Binary(bvh, prims) => {
+                let mut bary = (0.0, 0.0);
+                let test = |slot: u32, t_max: f32| {
+                    self.test(&prims[slot as usize], ray, &tri_ray, t_max, &mut bary)
+                };
+                bvh.any_hit(&q, ray.t_max, stats, test)
+            }
+            Tree::Wide4(bvh, leaves) => {
+                let tr4 = TriangleRay4::new(&tri_ray);
+                let test = |first, count, t_max| leaves.any(first, count, ray, &tr4, t_max);
+                bvh.any_hit_leaves(&q, ray.t_max, stats, test)
+            }
         }
     }
 
-    /// Intersects the primitive in `slot`; triangle barycentrics go to `bary`.
+    /// Intersects one primitive; triangle barycentrics go to `bary`.
     #[inline(always)]
     fn test(
         &self,
-        slot: u32,
+        p: &Prim,
         ray: &Ray,
         tri_ray: &TriangleRay,
         t_max: f32,
         bary: &mut (f32, f32),
     ) -> Option<f32> {
-        let p = &self.prims[slot as usize];
         if p.id < self.n_tri {
             let h = intersect_triangle(tri_ray, &p.v, t_max)?;
             *bary = (h.b1, h.b2);
