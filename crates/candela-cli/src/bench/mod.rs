@@ -47,6 +47,12 @@ pub struct RaysArgs {
     /// BVH node layout.
     #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
     pub layout: NodeLayout,
+    /// Override the SAH cost of a primitive test (block), relative to a node visit.
+    #[arg(long)]
+    pub isect_cost: Option<f32>,
+    /// Override the largest leaf.
+    #[arg(long)]
+    pub max_leaf: Option<usize>,
     /// Minimum seconds per timed measurement.
     #[arg(long, default_value_t = 1.0)]
     pub seconds: f64,

@@ -21,7 +21,10 @@ pub fn run(args: &RaysArgs) -> Result<()> {
         if set.kind == 0 { "primary" } else { "diffuse" }
     );
     let soup = triangle_soup(&mesh.positions, &mesh.indices)?;
-    let accel = Accel::build_with_layout(&soup, &[], args.bvh.into(), args.layout.into());
+    let mut opts = Accel::default_options(args.bvh.into(), args.layout.into());
+    opts.intersection_cost = args.isect_cost.unwrap_or(opts.intersection_cost);
+    opts.max_leaf_size = args.max_leaf.unwrap_or(opts.max_leaf_size);
+    let accel = Accel::build_with_options(&soup, &[], opts, args.layout.into());
     drop(soup);
     let info = accel.info();
     println!(

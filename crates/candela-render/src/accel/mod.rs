@@ -144,6 +144,33 @@ impl Accel {
         strategy: BuildStrategy,
         layout: Layout,
     ) -> Self {
+        Self::build_with_options(
+            triangles,
+            spheres,
+            Self::default_options(strategy, layout),
+            layout,
+        )
+    }
+
+    /// The build options used for a strategy and layout: the 4-wide layout
+    /// tests leaves four primitives at a time, so the SAH counts blocks of 4.
+    pub fn default_options(strategy: BuildStrategy, layout: Layout) -> BuildOptions {
+        match layout {
+            Layout::Binary => BuildOptions::with_strategy(strategy),
+            Layout::Wide4 => BuildOptions {
+                leaf_block: 4,
+                ..BuildOptions::with_strategy(strategy)
+            },
+        }
+    }
+
+    /// [`Accel::build`] with explicit BVH build options (for tuning).
+    pub fn build_with_options(
+        triangles: &[[Vec3; 3]],
+        spheres: &[(Vec3, f32)],
+        opts: BuildOptions,
+        layout: Layout,
+    ) -> Self {
         let start = Instant::now();
         let mut boxes: Vec<Aabb> = Vec::with_capacity(triangles.len() + spheres.len());
         boxes.extend(triangles.iter().map(|t| Aabb::from_points(t)));
@@ -152,11 +179,6 @@ impl Accel {
             Aabb::new(c - r, c + r)
         }));
         let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
-        let opts = BuildOptions {
-            // The 4-wide layout tests leaves four primitives at a time.
-            leaf_block: if layout == Layout::Wide4 { 4 } else { 1 },
-            ..BuildOptions::with_strategy(strategy)
-        };
         let bvh = Bvh::build(&boxes, &centroids, opts);
         drop((boxes, centroids));
         let n_tri = triangles.len() as u32;
