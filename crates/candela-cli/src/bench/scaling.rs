@@ -1,5 +1,6 @@
 //! `candela bench scaling`: displaced spheres of growing triangle count.
 
+use super::timing::cpu_seconds;
 use super::{throughput, ScalingArgs};
 use anyhow::Result;
 use candela_render::accel::Accel;
@@ -93,7 +94,7 @@ fn diffuse_rays(tris: &[[Vec3; 3]], n: usize) -> Vec<Ray> {
 
 /// Prints one row per size.
 pub fn run(args: &ScalingArgs) -> Result<()> {
-    println!("triangles | build 1 thread ms | build 2 threads ms | BVH B/tri | total B/tri | depth | primary closest | primary any | diffuse closest | diffuse any (Mrays/s, 1 thread, per CPU-second)");
+    println!("triangles | build 1 thread ms | build 2 threads ms (CPU ms) | BVH B/tri | total B/tri | depth | primary closest | primary any | diffuse closest | diffuse any (Mrays/s, 1 thread, per CPU-second)");
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let two = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
     for &size in &args.sizes {
@@ -102,8 +103,10 @@ pub fn run(args: &ScalingArgs) -> Result<()> {
             .install(|| Accel::build_with_layout(&tris, &[], args.bvh.into(), args.layout.into()))
             .info()
             .build_seconds;
+        let cpu0 = cpu_seconds();
         let accel = two
             .install(|| Accel::build_with_layout(&tris, &[], args.bvh.into(), args.layout.into()));
+        let build_cpu = cpu0.zip(cpu_seconds()).map_or(f64::NAN, |(a, b)| b - a);
         let info = accel.info();
         let n = tris.len() as f64;
         let mut rates = Vec::new();
@@ -114,10 +117,11 @@ pub fn run(args: &ScalingArgs) -> Result<()> {
             }
         }
         println!(
-            "{} | {:.0} | {:.0} | {:.1} | {:.1} | {} | {:.2} | {:.2} | {:.2} | {:.2}",
+            "{} | {:.0} | {:.0} ({:.0}) | {:.1} | {:.1} | {} | {:.2} | {:.2} | {:.2} | {:.2}",
             tris.len(),
             b1 * 1e3,
             info.build_seconds * 1e3,
+            build_cpu * 1e3,
             info.bvh_bytes as f64 / n,
             info.total_bytes as f64 / n,
             info.depth,
