@@ -47,6 +47,9 @@ pub struct RaysArgs {
     /// BVH node layout.
     #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
     pub layout: NodeLayout,
+    /// Replay only the first N rays (brute force over a big set is slow).
+    #[arg(long)]
+    pub limit: Option<usize>,
     /// Override the SAH cost of a primitive test (block), relative to a node visit.
     #[arg(long)]
     pub isect_cost: Option<f32>,
@@ -156,9 +159,9 @@ fn throughput(
 
 /// One line of a throughput table; `hits` of `n_rays` in one pass.
 fn report_line(label: &str, threads: usize, m: &Measure, hits: u64, n_rays: usize) {
-    let cpu = m.cpu_rate().map_or("?".to_string(), |r| format!("{r:.2}"));
+    let cpu = m.cpu_rate().map_or("?".to_string(), |r| format!("{r:.3}"));
     println!(
-        "  {label:<8} {threads} thread(s): {:>7.2} Mrays/s wall, {:>6.2} per thread, {cpu:>6} per CPU-second  ({hits} of {n_rays} hit)",
+        "  {label:<8} {threads} thread(s): {:>7.3} Mrays/s wall, {:>6.3} per thread, {cpu:>6} per CPU-second  ({hits} of {n_rays} hit)",
         m.wall_rate(),
         m.wall_rate() / threads as f64,
     );
