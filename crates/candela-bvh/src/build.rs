@@ -11,6 +11,7 @@
 use crate::node::Node;
 use crate::{Aabb, BuildOptions, BuildStrategy};
 use glam::{Vec3, Vec3A};
+use rayon::prelude::*;
 
 /// Ranges at least this large are split in parallel with `rayon::join`.
 const PARALLEL_MIN: usize = 4096;
@@ -87,6 +88,13 @@ impl RangeBounds {
         refs.iter().fold(Self::EMPTY, |b, r| b.grow(r))
     }
 
+    fn union(self, o: Self) -> Self {
+        Self {
+            bounds: self.bounds.union(o.bounds),
+            centroids: self.centroids.union(o.centroids),
+        }
+    }
+
     #[inline(always)]
     fn grow(self, r: &PrimRef) -> Self {
         Self {
@@ -117,9 +125,9 @@ pub(crate) fn build(
     centroids: &[Vec3],
     opts: BuildOptions,
 ) -> (Vec<Node>, Vec<u32>, u32) {
-    let mut refs: Vec<PrimRef> = boxes
-        .iter()
-        .zip(centroids)
+    let n = boxes.len().min(centroids.len());
+    let mut refs: Vec<PrimRef> = (&boxes[..n], &centroids[..n])
+        .into_par_iter()
         .enumerate()
         .map(|(i, (b, &c))| PrimRef {
             bounds: BoxA {
@@ -133,7 +141,10 @@ pub(crate) fn build(
     if refs.is_empty() {
         return (Vec::new(), Vec::new(), 0);
     }
-    let rb = RangeBounds::of(&refs);
+    let rb = refs
+        .par_chunks(PARALLEL_MIN)
+        .map(RangeBounds::of)
+        .reduce(|| RangeBounds::EMPTY, RangeBounds::union);
     let tree = build_parallel(&opts, &mut refs, rb, 0, 1);
     let depth = tree.depth();
     let mut nodes = Vec::with_capacity(2 * refs.len());

@@ -13,6 +13,7 @@ use crate::geometry::Ray;
 use crate::shape::{intersect_sphere, intersect_triangle, sphere_uv, TriangleRay, TriangleRay4};
 use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, StatsSink};
 use glam::Vec3;
+use rayon::prelude::*;
 use std::time::Instant;
 
 pub use candela_bvh::TraversalStats;
@@ -172,13 +173,12 @@ impl Accel {
         layout: Layout,
     ) -> Self {
         let start = Instant::now();
-        let mut boxes: Vec<Aabb> = Vec::with_capacity(triangles.len() + spheres.len());
-        boxes.extend(triangles.iter().map(|t| Aabb::from_points(t)));
+        let mut boxes: Vec<Aabb> = triangles.par_iter().map(|t| Aabb::from_points(t)).collect();
         boxes.extend(spheres.iter().map(|&(c, r)| {
             let r = Vec3::splat(r.abs());
             Aabb::new(c - r, c + r)
         }));
-        let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
+        let centroids: Vec<Vec3> = boxes.par_iter().map(Aabb::center).collect();
         let bvh = Bvh::build(&boxes, &centroids, opts);
         drop((boxes, centroids));
         let n_tri = triangles.len() as u32;
@@ -306,10 +306,11 @@ impl Accel {
                 let mut hit = LeafHit::default();
                 let test =
                     |first, count, t_max| leaves.closest(first, count, ray, &tr4, t_max, &mut hit);
-                let (_, t) = bvh.closest_hit_leaves(&q, ray.t_max, stats, test)?;
+                let (slot, t) = bvh.closest_hit_leaves(&q, ray.t_max, stats, test)?;
+                let prim = bvh.primitive_order()[slot as usize];
                 Some(Hit {
                     t,
-                    prim: hit.id,
+                    prim,
                     b1: hit.b1,
                     b2: hit.b2,
                 })

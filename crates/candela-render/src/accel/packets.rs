@@ -9,12 +9,12 @@ use candela_bvh::Bvh4;
 use glam::Vec3;
 
 /// Up to four primitives. A sphere lane keeps its centre in the `v0` rows
-/// and its radius in the `v1.x` row. 176 bytes.
+/// and its radius in the `v1.x` row. 160 bytes. Primitive ids are not
+/// stored: the BVH's primitive order maps the winning slot to its id.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
 pub(super) struct Block {
     tri: TrianglePacket,
-    ids: [u32; 4],
     tri_lanes: u32,
     sphere_lanes: u32,
 }
@@ -27,11 +27,9 @@ pub(super) struct LeafBlocks {
     first_block: Vec<u32>,
 }
 
-/// The winning primitive of a leaf: id, and the hit's barycentrics (or
-/// sphere coordinates).
+/// The winning primitive's barycentrics (or sphere coordinates).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct LeafHit {
-    pub id: u32,
     pub b1: f32,
     pub b2: f32,
 }
@@ -60,12 +58,10 @@ impl LeafBlocks {
                 let mut tris = [[Vec3::ZERO; 3]; 4];
                 let mut b = Block {
                     tri: TrianglePacket::new(&[]),
-                    ids: [u32::MAX; 4],
                     tri_lanes: 0,
                     sphere_lanes: 0,
                 };
                 for (lane, &id) in chunk.iter().enumerate() {
-                    b.ids[lane] = id;
                     match prim(id) {
                         Ok(t) => {
                             tris[lane] = t;
@@ -115,11 +111,7 @@ impl LeafBlocks {
                 if let Some((lane, h)) = intersect_triangle4(tr4, &b.tri, b.tri_lanes, t_best) {
                     t_best = h.t;
                     best = Some((slot0 + lane as u32, h.t));
-                    *out = LeafHit {
-                        id: b.ids[lane],
-                        b1: h.b1,
-                        b2: h.b2,
-                    };
+                    *out = LeafHit { b1: h.b1, b2: h.b2 };
                 }
             }
             let mut s = b.sphere_lanes;
@@ -131,11 +123,7 @@ impl LeafBlocks {
                     t_best = t;
                     best = Some((slot0 + lane as u32, t));
                     let (u, v) = sphere_uv(c, ray.at(t));
-                    *out = LeafHit {
-                        id: b.ids[lane],
-                        b1: u,
-                        b2: v,
-                    };
+                    *out = LeafHit { b1: u, b2: v };
                 }
             }
         }
