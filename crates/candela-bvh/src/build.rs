@@ -2,11 +2,16 @@
 //!
 //! Binned SAH after Wald, "On fast Construction of SAH-based Bounding Volume
 //! Hierarchies" (2007): centroids are dropped into a few bins per axis and
-//! the split cost is evaluated only at bin boundaries, which is O(n) per node.
+//! the split cost is evaluated only at bin boundaries. The build works on a
+//! compact array of primitive references (box, centroid, id) that is
+//! partitioned in place, so every pass reads memory sequentially; each node
+//! costs one binning pass (all three axes at once) and one partition pass,
+//! which also gathers the children's boxes.
 
 use crate::node::Node;
 use crate::{Aabb, BuildOptions, BuildStrategy};
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
+use rayon::prelude::*;
 
 /// Ranges at least this large are split in parallel with `rayon::join`.
 const PARALLEL_MIN: usize = 4096;
@@ -17,11 +22,86 @@ const BINS: usize = 16;
 /// `SAH_DEPTH_LIMIT + 32` and the fixed traversal stack never overflows.
 pub(crate) const SAH_DEPTH_LIMIT: u32 = 48;
 
-/// The inputs shared by every recursive call.
-struct Ctx<'a> {
-    boxes: &'a [Aabb],
-    centroids: &'a [Vec3],
-    opts: BuildOptions,
+/// A box in SIMD registers: `Vec3A` min/max are single instructions,
+/// where `Vec3`'s NaN-aware `f32::min` costs several. Build-internal.
+#[derive(Clone, Copy, Debug)]
+struct BoxA {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl BoxA {
+    const EMPTY: Self = Self {
+        min: Vec3A::INFINITY,
+        max: Vec3A::NEG_INFINITY,
+    };
+
+    #[inline(always)]
+    fn union(self, o: Self) -> Self {
+        Self {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(self, p: Vec3A) -> Self {
+        Self {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    #[inline(always)]
+    fn half_area(&self) -> f32 {
+        let e = (self.max - self.min).max(Vec3A::ZERO);
+        e.x * e.y + e.y * e.z + e.z * e.x
+    }
+
+    fn aabb(&self) -> Aabb {
+        Aabb::new(self.min.into(), self.max.into())
+    }
+}
+
+/// A primitive during the build.
+#[derive(Clone, Copy, Debug)]
+struct PrimRef {
+    bounds: BoxA,
+    centroid: Vec3A,
+    id: u32,
+}
+
+/// A range's box and centroid box.
+#[derive(Clone, Copy, Debug)]
+struct RangeBounds {
+    bounds: BoxA,
+    centroids: BoxA,
+}
+
+impl RangeBounds {
+    const EMPTY: Self = Self {
+        bounds: BoxA::EMPTY,
+        centroids: BoxA::EMPTY,
+    };
+
+    fn of(refs: &[PrimRef]) -> Self {
+        refs.iter().fold(Self::EMPTY, |b, r| b.grow(r))
+    }
+
+    fn union(self, o: Self) -> Self {
+        Self {
+            bounds: self.bounds.union(o.bounds),
+            centroids: self.centroids.union(o.centroids),
+        }
+    }
+
+    #[inline(always)]
+    fn grow(self, r: &PrimRef) -> Self {
+        Self {
+            bounds: self.bounds.union(r.bounds),
+            centroids: self.centroids.grow(r.centroid),
+        }
+    }
 }
 
 /// A built subtree: either laid out already (node indices local to the
@@ -46,20 +126,30 @@ pub(crate) fn build(
     opts: BuildOptions,
 ) -> (Vec<Node>, Vec<u32>, u32) {
     let n = boxes.len().min(centroids.len());
-    let mut order: Vec<u32> = (0..n as u32).collect();
-    if n == 0 {
-        return (Vec::new(), order, 0);
+    let mut refs: Vec<PrimRef> = (&boxes[..n], &centroids[..n])
+        .into_par_iter()
+        .enumerate()
+        .map(|(i, (b, &c))| PrimRef {
+            bounds: BoxA {
+                min: b.min.into(),
+                max: b.max.into(),
+            },
+            centroid: c.into(),
+            id: i as u32,
+        })
+        .collect();
+    if refs.is_empty() {
+        return (Vec::new(), Vec::new(), 0);
     }
-    let ctx = Ctx {
-        boxes,
-        centroids,
-        opts,
-    };
-    let tree = build_parallel(&ctx, &mut order, 0, 1);
+    let rb = refs
+        .par_chunks(PARALLEL_MIN)
+        .map(RangeBounds::of)
+        .reduce(|| RangeBounds::EMPTY, RangeBounds::union);
+    let tree = build_parallel(&opts, &mut refs, rb, 0, 1);
     let depth = tree.depth();
-    let mut nodes = Vec::with_capacity(2 * n);
+    let mut nodes = Vec::with_capacity(2 * refs.len());
     flatten(tree, &mut nodes);
-    (nodes, order, depth)
+    (nodes, refs.iter().map(|r| r.id).collect(), depth)
 }
 
 /// Appends `tree` to `out`, shifting subtree-local child indices.
@@ -84,153 +174,173 @@ fn flatten(tree: Subtree, out: &mut Vec<Node>) {
     }
 }
 
-fn build_parallel(ctx: &Ctx, order: &mut [u32], first: u32, depth: u32) -> Subtree {
-    if order.len() < PARALLEL_MIN {
-        let mut nodes = Vec::with_capacity(2 * order.len());
-        let d = build_serial(ctx, order, first, depth, &mut nodes);
+fn build_parallel(
+    opts: &BuildOptions,
+    refs: &mut [PrimRef],
+    rb: RangeBounds,
+    first: u32,
+    depth: u32,
+) -> Subtree {
+    if refs.len() < PARALLEL_MIN {
+        let mut nodes = Vec::with_capacity(2 * refs.len());
+        let d = build_serial(opts, refs, rb, first, depth, &mut nodes);
         return Subtree::Flat(nodes, d);
     }
-    let (bounds, decision) = decide(ctx, order, depth);
-    let Some(mid) = decision else {
-        let nodes = vec![Node::leaf(bounds, first, order.len() as u32)];
+    let Some((mid, lb, rbs)) = split(opts, refs, &rb, depth) else {
+        let nodes = vec![Node::leaf(rb.bounds.aabb(), first, refs.len() as u32)];
         return Subtree::Flat(nodes, depth);
     };
-    let (lo, hi) = order.split_at_mut(mid);
+    let (lo, hi) = refs.split_at_mut(mid);
     let (l, r) = rayon::join(
-        || build_parallel(ctx, lo, first, depth + 1),
-        || build_parallel(ctx, hi, first + mid as u32, depth + 1),
+        || build_parallel(opts, lo, lb, first, depth + 1),
+        || build_parallel(opts, hi, rbs, first + mid as u32, depth + 1),
     );
     let d = l.depth().max(r.depth());
-    Subtree::Split(bounds, Box::new(l), Box::new(r), d)
+    Subtree::Split(rb.bounds.aabb(), Box::new(l), Box::new(r), d)
 }
 
 /// Depth-first serial build into `nodes`; returns the deepest level reached.
 fn build_serial(
-    ctx: &Ctx,
-    order: &mut [u32],
+    opts: &BuildOptions,
+    refs: &mut [PrimRef],
+    rb: RangeBounds,
     first: u32,
     depth: u32,
     nodes: &mut Vec<Node>,
 ) -> u32 {
-    let (bounds, decision) = decide(ctx, order, depth);
     let me = nodes.len();
-    let Some(mid) = decision else {
-        nodes.push(Node::leaf(bounds, first, order.len() as u32));
+    let Some((mid, lb, rbs)) = split(opts, refs, &rb, depth) else {
+        nodes.push(Node::leaf(rb.bounds.aabb(), first, refs.len() as u32));
         return depth;
     };
-    nodes.push(Node::interior(bounds, 0));
-    let (lo, hi) = order.split_at_mut(mid);
-    let dl = build_serial(ctx, lo, first, depth + 1, nodes);
+    nodes.push(Node::interior(rb.bounds.aabb(), 0));
+    let (lo, hi) = refs.split_at_mut(mid);
+    let dl = build_serial(opts, lo, lb, first, depth + 1, nodes);
     nodes[me].offset = nodes.len() as u32;
-    let dr = build_serial(ctx, hi, first + mid as u32, depth + 1, nodes);
+    let dr = build_serial(opts, hi, rbs, first + mid as u32, depth + 1, nodes);
     dl.max(dr)
 }
 
-/// Computes the node box and decides: `None` for a leaf, or the index at
-/// which `order` (already partitioned) splits into the two children.
-fn decide(ctx: &Ctx, order: &mut [u32], depth: u32) -> (Aabb, Option<usize>) {
-    let mut bounds = Aabb::EMPTY;
-    let mut cbounds = Aabb::EMPTY;
-    for &i in order.iter() {
-        bounds = bounds.union(ctx.boxes[i as usize]);
-        cbounds = cbounds.grow(ctx.centroids[i as usize]);
-    }
-    let n = order.len();
-    let max_leaf = ctx.opts.max_leaf_size.max(1);
-    let split = match ctx.opts.strategy {
+/// Decides a node: `None` for a leaf, or the partition point (with `refs`
+/// partitioned) and the two children's bounds.
+fn split(
+    opts: &BuildOptions,
+    refs: &mut [PrimRef],
+    rb: &RangeBounds,
+    depth: u32,
+) -> Option<(usize, RangeBounds, RangeBounds)> {
+    let n = refs.len();
+    let max_leaf = opts.max_leaf_size.max(1);
+    let mid = match opts.strategy {
         BuildStrategy::None => None,
         BuildStrategy::Median if n <= max_leaf => None,
-        BuildStrategy::Median => Some(median_split(ctx, order, &cbounds)),
+        BuildStrategy::Median => Some(median_split(refs, &rb.centroids)),
         BuildStrategy::Sah if n <= 1 => None,
         BuildStrategy::Sah if depth >= SAH_DEPTH_LIMIT => {
-            (n > max_leaf).then(|| median_split(ctx, order, &cbounds))
+            (n > max_leaf).then(|| median_split(refs, &rb.centroids))
         }
-        BuildStrategy::Sah => match sah_split(ctx, order, &bounds, &cbounds) {
+        BuildStrategy::Sah => match sah_split(opts, refs, rb) {
             Some(mid) => Some(mid),
-            None if n > max_leaf => Some(median_split(ctx, order, &cbounds)),
+            None if n > max_leaf => Some(median_split(refs, &rb.centroids)),
             None => None,
         },
-    };
-    (bounds, split)
+    }?;
+    Some((
+        mid,
+        RangeBounds::of(&refs[..mid]),
+        RangeBounds::of(&refs[mid..]),
+    ))
 }
 
 /// Object median on the longest centroid axis: `select_nth` gives the same
 /// partition as sorting and cutting in the middle, in linear time.
-fn median_split(ctx: &Ctx, order: &mut [u32], cbounds: &Aabb) -> usize {
-    let axis = cbounds.longest_axis();
-    let mid = order.len() / 2;
-    let key = |i: &u32| ctx.centroids[*i as usize][axis];
-    order.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)));
+fn median_split(refs: &mut [PrimRef], cbounds: &BoxA) -> usize {
+    let axis = cbounds.aabb().longest_axis();
+    let mid = refs.len() / 2;
+    refs.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
     mid
 }
 
-/// Binned SAH. Returns the partition point when splitting is cheaper than a
-/// leaf (or when the leaf would exceed the size limit), `None` for a leaf or
-/// when no bin boundary separates the centroids.
-fn sah_split(ctx: &Ctx, order: &mut [u32], bounds: &Aabb, cbounds: &Aabb) -> Option<usize> {
-    let n = order.len();
-    let ext = cbounds.extent();
+/// Binned SAH over all three axes in one pass. Returns the partition point
+/// when splitting is cheaper than a leaf (or when the leaf would exceed the
+/// size limit), `None` for a leaf or when no bin boundary separates the
+/// centroids.
+fn sah_split(opts: &BuildOptions, refs: &mut [PrimRef], rb: &RangeBounds) -> Option<usize> {
+    let n = refs.len();
+    let block = opts.leaf_block.max(1) as u32;
+    let blocks = |count: u32| count.div_ceil(block) as f32;
+    let lo = rb.centroids.min;
+    let ext = (rb.centroids.max - rb.centroids.min).max(Vec3A::ZERO);
+    let usable = |a: usize| ext[a] > 0.0 && ext[a].is_finite();
+    let scale = Vec3A::from_array([0, 1, 2].map(|a| {
+        if usable(a) {
+            BINS as f32 * (1.0 - 1e-6) / ext[a]
+        } else {
+            0.0
+        }
+    }));
+    let mut bins = [[(BoxA::EMPTY, 0u32); BINS]; 3];
+    for r in refs.iter() {
+        let k = bin_index(r.centroid, lo, scale);
+        for a in 0..3 {
+            let bin = &mut bins[a][k[a]];
+            bin.0 = bin.0.union(r.bounds);
+            bin.1 += 1;
+        }
+    }
     let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, first bin on the right)
-    for axis in 0..3 {
-        if ext[axis].is_nan() || ext[axis] <= 0.0 || !ext[axis].is_finite() {
+    for (axis, bins) in bins.iter().enumerate() {
+        if !usable(axis) {
             continue;
         }
-        let scale = BINS as f32 * (1.0 - 1e-6) / ext[axis];
-        let lo = cbounds.min[axis];
-        let mut bins = [(Aabb::EMPTY, 0u32); BINS];
-        for &i in order.iter() {
-            let b = bin_of(ctx.centroids[i as usize][axis], lo, scale);
-            bins[b].0 = bins[b].0.union(ctx.boxes[i as usize]);
-            bins[b].1 += 1;
-        }
         let mut right_cost = [0.0f32; BINS];
-        let (mut acc, mut cnt) = (Aabb::EMPTY, 0u32);
+        let (mut acc, mut cnt) = (BoxA::EMPTY, 0u32);
         for b in (1..BINS).rev() {
             acc = acc.union(bins[b].0);
             cnt += bins[b].1;
-            right_cost[b] = acc.half_area() * cnt as f32;
+            right_cost[b] = acc.half_area() * blocks(cnt);
         }
-        let (mut acc, mut cnt) = (Aabb::EMPTY, 0u32);
+        let (mut acc, mut cnt) = (BoxA::EMPTY, 0u32);
         for b in 1..BINS {
             acc = acc.union(bins[b - 1].0);
             cnt += bins[b - 1].1;
             if cnt == 0 || cnt as usize == n {
                 continue;
             }
-            let cost = acc.half_area() * cnt as f32 + right_cost[b];
+            let cost = acc.half_area() * blocks(cnt) + right_cost[b];
             if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, b));
             }
         }
     }
     let (cost, axis, split_bin) = best?;
-    let area = bounds.half_area();
-    let o = &ctx.opts;
-    let split_cost = o.traversal_cost + o.intersection_cost * cost / area;
-    let leaf_cost = o.intersection_cost * n as f32;
-    if !split_cost.is_finite() || (n <= o.max_leaf_size && leaf_cost <= split_cost) {
+    let split_cost = opts.traversal_cost + opts.intersection_cost * cost / rb.bounds.half_area();
+    let leaf_cost = opts.intersection_cost * blocks(n as u32);
+    if !split_cost.is_finite() || (n <= opts.max_leaf_size && leaf_cost <= split_cost) {
         return None;
     }
-    let lo = cbounds.min[axis];
-    let scale = BINS as f32 * (1.0 - 1e-6) / ext[axis];
-    let mid = partition(order, |i| {
-        bin_of(ctx.centroids[i as usize][axis], lo, scale) < split_bin
-    });
+    let mid = partition(refs, |r| bin_index(r.centroid, lo, scale)[axis] < split_bin);
     (mid > 0 && mid < n).then_some(mid)
 }
 
-#[inline]
-fn bin_of(c: f32, lo: f32, scale: f32) -> usize {
-    // `as usize` saturates (and maps NaN to 0), so a stray value cannot index out of range.
-    (((c - lo) * scale) as usize).min(BINS - 1)
+/// Bin of a centroid on each axis. `as usize` saturates (and maps NaN to
+/// 0), so a stray value cannot index out of range.
+#[inline(always)]
+fn bin_index(c: Vec3A, lo: Vec3A, scale: Vec3A) -> [usize; 3] {
+    // Clamped in float first, so the conversion is a plain truncation;
+    // `max` with 0 sends NaN (from infinite boxes) to bin 0.
+    let f = ((c - lo) * scale)
+        .max(Vec3A::ZERO)
+        .min(Vec3A::splat((BINS - 1) as f32));
+    [f.x as usize, f.y as usize, f.z as usize]
 }
 
 /// In-place partition; returns how many elements satisfy `left`.
-fn partition(order: &mut [u32], left: impl Fn(u32) -> bool) -> usize {
+fn partition(refs: &mut [PrimRef], left: impl Fn(&PrimRef) -> bool) -> usize {
     let mut mid = 0;
-    for j in 0..order.len() {
-        if left(order[j]) {
-            order.swap(mid, j);
+    for j in 0..refs.len() {
+        if left(&refs[j]) {
+            refs.swap(mid, j);
             mid += 1;
         }
     }

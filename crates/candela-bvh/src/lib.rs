@@ -13,12 +13,17 @@
 mod aabb;
 mod build;
 mod node;
+pub mod simd;
 mod traverse;
 mod validate;
+mod wide;
+mod wide_traverse;
+mod wide_validate;
 
 pub use aabb::Aabb;
 pub use node::Node;
 pub use traverse::{RayBoxQuery, StatsSink, TraversalStats};
+pub use wide::{Bvh4, Node4};
 
 use glam::Vec3;
 
@@ -47,6 +52,10 @@ pub struct BuildOptions {
     pub traversal_cost: f32,
     /// Cost of one primitive test.
     pub intersection_cost: f32,
+    /// Primitives are tested in blocks of this many (e.g. 4 with SIMD
+    /// packets), so the SAH charges a leaf `ceil(n / block)` tests and
+    /// prefers leaf sizes that fill whole blocks.
+    pub leaf_block: usize,
 }
 
 impl Default for BuildOptions {
@@ -56,6 +65,7 @@ impl Default for BuildOptions {
             max_leaf_size: 8,
             traversal_cost: 1.0,
             intersection_cost: 1.0,
+            leaf_block: 1,
         }
     }
 }

@@ -15,7 +15,8 @@ const STACK_SIZE: usize = SAH_DEPTH_LIMIT as usize + 40;
 /// Slab tests round; widening the interval by this factor keeps the box
 /// test conservative, so a ray that hits a primitive always reaches its leaf
 /// (pbrt: `tMax *= 1 + 2 * gamma(3)`).
-const ROBUST_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+pub(crate) const ROBUST_SCALE: f32 =
+    1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
 /// Receives traversal events; `()` ignores them at no cost, [`TraversalStats`] counts.
 pub trait StatsSink {
@@ -23,6 +24,13 @@ pub trait StatsSink {
     fn node(&mut self);
     /// A primitive was tested.
     fn prim(&mut self);
+    /// `n` primitives were tested.
+    #[inline(always)]
+    fn prims(&mut self, n: u32) {
+        for _ in 0..n {
+            self.prim();
+        }
+    }
 }
 
 impl StatsSink for () {
@@ -51,6 +59,10 @@ impl StatsSink for TraversalStats {
     fn prim(&mut self) {
         self.prims_tested += 1;
     }
+    #[inline(always)]
+    fn prims(&mut self, n: u32) {
+        self.prims_tested += n as u64;
+    }
 }
 
 impl std::ops::AddAssign for TraversalStats {
@@ -77,6 +89,18 @@ impl RayBoxQuery {
             origin,
             inv_dir: dir.recip(),
         }
+    }
+
+    /// The ray origin.
+    #[inline(always)]
+    pub fn origin(&self) -> Vec3 {
+        self.origin
+    }
+
+    /// Componentwise `1 / dir`.
+    #[inline(always)]
+    pub fn inv_dir(&self) -> Vec3 {
+        self.inv_dir
     }
 
     /// Entry distance into `node`'s box within `[0, t_max]`, or infinity on a miss.

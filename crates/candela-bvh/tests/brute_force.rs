@@ -5,7 +5,7 @@
 //! random. Closest-hit must return the brute-force distance and any-hit the
 //! brute-force verdict, for every ray.
 
-use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, RayBoxQuery, TraversalStats};
+use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, TraversalStats};
 use glam::Vec3;
 
 /// SplitMix64: a seeded generator, so every failure reproduces.
@@ -58,13 +58,20 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
         for max_leaf in [1, 4, 8] {
             let opts = BuildOptions {
                 max_leaf_size: max_leaf,
+                leaf_block: if max_leaf == 8 { 4 } else { 1 },
                 ..BuildOptions::with_strategy(strategy)
             };
             let bvh = Bvh::build(boxes, &centroids, opts);
             if let Err(e) = bvh.validate(boxes) {
                 panic!("{label} {strategy:?}/{max_leaf}: {e}");
             }
+            let wide = Bvh4::from_binary(bvh.clone());
+            if let Err(e) = wide.validate(boxes) {
+                panic!("{label} {strategy:?}/{max_leaf} (4-wide): {e}");
+            }
+            assert!(wide.depth() <= bvh.depth());
             let order = bvh.primitive_order();
+            assert_eq!(order, wide.primitive_order());
             let world = bvh.bounds();
             for k in 0..rays {
                 let o = if world.is_empty() {
@@ -109,6 +116,49 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
                     any,
                     brute.is_some(),
                     "{label} {strategy:?}/{max_leaf} ray {k}: any hit"
+                );
+                let mut wide_stats = TraversalStats::default();
+                let got4 = wide.closest_hit(&q, t_max, &mut wide_stats, |slot, tm| {
+                    box_hit(o, d, &boxes[order[slot as usize] as usize], tm).filter(|&t| t < tm)
+                });
+                assert_eq!(
+                    got4.map(|g| g.1),
+                    brute,
+                    "{label} {strategy:?}/{max_leaf} ray {k}: 4-wide closest"
+                );
+                assert!(wide_stats.prims_tested as usize <= boxes.len());
+                let any4 = wide.any_hit(&q, t_max, &mut (), |slot, tm| {
+                    box_hit(o, d, &boxes[order[slot as usize] as usize], tm).filter(|&t| t < tm)
+                });
+                assert_eq!(
+                    any4,
+                    brute.is_some(),
+                    "{label} {strategy:?}/{max_leaf} ray {k}: 4-wide any"
+                );
+                // Whole leaves per call, as SIMD packet callers use it.
+                let leaves = wide.closest_hit_leaves(&q, t_max, &mut (), |first, count, tm| {
+                    (first..first + count)
+                        .filter_map(|slot| {
+                            let b = &boxes[order[slot as usize] as usize];
+                            box_hit(o, d, b, tm).filter(|&t| t < tm).map(|t| (slot, t))
+                        })
+                        .min_by(|a, b| a.1.total_cmp(&b.1))
+                });
+                assert_eq!(
+                    leaves.map(|g| g.1),
+                    brute,
+                    "{label} ray {k}: leaf-wise closest"
+                );
+                let any_leaves = wide.any_hit_leaves(&q, t_max, &mut (), |first, count, tm| {
+                    (first..first + count).any(|slot| {
+                        let b = &boxes[order[slot as usize] as usize];
+                        box_hit(o, d, b, tm).is_some_and(|t| t < tm)
+                    })
+                });
+                assert_eq!(
+                    any_leaves,
+                    brute.is_some(),
+                    "{label} ray {k}: leaf-wise any"
                 );
             }
         }
@@ -203,6 +253,8 @@ fn huge_boxes_among_small_ones() {
     for s in [BuildStrategy::Sah, BuildStrategy::Median] {
         let bvh = Bvh::build(&boxes, &centroids, BuildOptions::with_strategy(s));
         bvh.validate(&boxes).unwrap();
+        let wide = Bvh4::from_binary(bvh.clone());
+        wide.validate(&boxes).unwrap();
         // Every ray starts inside the first huge box, so any-hit is always true.
         let order = bvh.primitive_order();
         for _ in 0..100 {
@@ -215,6 +267,10 @@ fn huge_boxes_among_small_ones() {
                 box_hit(o, d, &boxes[order[slot as usize] as usize], tm)
             });
             assert!(hit);
+            let hit4 = wide.any_hit(&q, f32::INFINITY, &mut (), |slot, tm| {
+                box_hit(o, d, &boxes[order[slot as usize] as usize], tm)
+            });
+            assert!(hit4);
         }
     }
 }

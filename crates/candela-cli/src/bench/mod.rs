@@ -9,7 +9,7 @@ mod timing;
 
 use anyhow::Result;
 use candela_bvh::BuildStrategy;
-use candela_render::accel::Accel;
+use candela_render::accel::{Accel, Layout};
 use candela_render::geometry::Ray;
 use clap::{Args, Subcommand, ValueEnum};
 use rayon::prelude::*;
@@ -44,6 +44,18 @@ pub struct RaysArgs {
     /// BVH build strategy.
     #[arg(long, value_enum, default_value_t = Strategy::Sah)]
     pub bvh: Strategy,
+    /// BVH node layout.
+    #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
+    pub layout: NodeLayout,
+    /// Replay only the first N rays (brute force over a big set is slow).
+    #[arg(long)]
+    pub limit: Option<usize>,
+    /// Override the SAH cost of a primitive test (block), relative to a node visit.
+    #[arg(long)]
+    pub isect_cost: Option<f32>,
+    /// Override the largest leaf.
+    #[arg(long)]
+    pub max_leaf: Option<usize>,
     /// Minimum seconds per timed measurement.
     #[arg(long, default_value_t = 1.0)]
     pub seconds: f64,
@@ -61,6 +73,27 @@ pub struct ScalingArgs {
     /// BVH build strategy.
     #[arg(long, value_enum, default_value_t = Strategy::Sah)]
     pub bvh: Strategy,
+    /// BVH node layout.
+    #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
+    pub layout: NodeLayout,
+}
+
+/// The node layout as a command-line value.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum NodeLayout {
+    /// Binary BVH, scalar box tests.
+    Binary,
+    /// 4-wide BVH, SIMD box tests.
+    Wide4,
+}
+
+impl From<NodeLayout> for Layout {
+    fn from(l: NodeLayout) -> Self {
+        match l {
+            NodeLayout::Binary => Layout::Binary,
+            NodeLayout::Wide4 => Layout::Wide4,
+        }
+    }
 }
 
 /// The build strategy as a command-line value.
@@ -126,9 +159,9 @@ fn throughput(
 
 /// One line of a throughput table; `hits` of `n_rays` in one pass.
 fn report_line(label: &str, threads: usize, m: &Measure, hits: u64, n_rays: usize) {
-    let cpu = m.cpu_rate().map_or("?".to_string(), |r| format!("{r:.2}"));
+    let cpu = m.cpu_rate().map_or("?".to_string(), |r| format!("{r:.3}"));
     println!(
-        "  {label:<8} {threads} thread(s): {:>7.2} Mrays/s wall, {:>6.2} per thread, {cpu:>6} per CPU-second  ({hits} of {n_rays} hit)",
+        "  {label:<8} {threads} thread(s): {:>7.3} Mrays/s wall, {:>6.3} per thread, {cpu:>6} per CPU-second  ({hits} of {n_rays} hit)",
         m.wall_rate(),
         m.wall_rate() / threads as f64,
     );

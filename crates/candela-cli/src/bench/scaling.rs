@@ -1,40 +1,54 @@
 //! `candela bench scaling`: displaced spheres of growing triangle count.
 
+use super::timing::cpu_seconds;
 use super::{throughput, ScalingArgs};
 use anyhow::Result;
-use candela_render::accel::Accel;
+use candela_render::accel::{Accel, TraversalStats};
 use candela_render::geometry::{Frame, Ray};
 use candela_render::shape::{spawn_ray, triangle_surface_point};
 use glam::Vec3;
-use std::f32::consts::{PI, TAU};
+use std::f32::consts::TAU;
 
-/// A latitude–longitude sphere with about `target` triangles, its radius
-/// displaced by a few sine waves so the BVH sees a bumpy, scanned-like surface.
+/// A cube sphere (each cube face a `k x k` grid pushed onto the sphere,
+/// so triangles are evenly sized, unlike a latitude-longitude grid's polar
+/// slivers) with about `target` triangles, its radius displaced by a few
+/// sine waves so the BVH sees a bumpy, scanned-like surface.
 fn displaced_sphere(target: usize) -> Vec<[Vec3; 3]> {
-    let nv = ((target as f32 / 4.0).sqrt().ceil() as usize).max(3);
-    let nu = 2 * nv;
-    let point = |i: usize, j: usize| {
-        let (theta, phi) = (PI * i as f32 / nv as f32, TAU * (j % nu) as f32 / nu as f32);
+    let k = ((target as f32 / 12.0).sqrt().ceil() as usize).max(1);
+    let displace = |p: Vec3| {
+        let d = p.normalize();
+        let (theta, phi) = (d.y.clamp(-1.0, 1.0).acos(), d.z.atan2(d.x));
         let r = 1.0
             + 0.05 * (7.0 * theta).sin() * (9.0 * phi).sin()
             + 0.02 * (31.0 * theta + 17.0 * phi).sin();
-        r * Vec3::new(
-            theta.sin() * phi.cos(),
-            theta.cos(),
-            theta.sin() * phi.sin(),
-        )
+        r * d
     };
-    let mut tris = Vec::with_capacity(2 * nu * nv);
-    for i in 0..nv {
-        for j in 0..nu {
-            let (a, b, c, d) = (
-                point(i, j),
-                point(i + 1, j),
-                point(i + 1, j + 1),
-                point(i, j + 1),
-            );
-            tris.push([a, b, c]);
-            tris.push([a, c, d]);
+    let mut tris = Vec::with_capacity(12 * k * k);
+    for axis in 0..3 {
+        for sign in [-1.0f32, 1.0] {
+            let point = |i: usize, j: usize| {
+                let (u, v) = (
+                    2.0 * i as f32 / k as f32 - 1.0,
+                    2.0 * j as f32 / k as f32 - 1.0,
+                );
+                let mut p = [0.0f32; 3];
+                p[axis] = sign;
+                p[(axis + 1) % 3] = u;
+                p[(axis + 2) % 3] = v * sign;
+                displace(Vec3::from_array(p))
+            };
+            for i in 0..k {
+                for j in 0..k {
+                    let (a, b, c, d) = (
+                        point(i, j),
+                        point(i + 1, j),
+                        point(i + 1, j + 1),
+                        point(i, j + 1),
+                    );
+                    tris.push([a, b, c]);
+                    tris.push([a, c, d]);
+                }
+            }
         }
     }
     tris
@@ -93,37 +107,54 @@ fn diffuse_rays(tris: &[[Vec3; 3]], n: usize) -> Vec<Ray> {
 
 /// Prints one row per size.
 pub fn run(args: &ScalingArgs) -> Result<()> {
-    println!("triangles | build 1 thread ms | build 2 threads ms | BVH B/tri | total B/tri | depth | primary closest | primary any | diffuse closest | diffuse any (Mrays/s, 1 thread, per CPU-second)");
+    println!("triangles | build 1 thread ms | build 2 threads ms (CPU ms) | BVH B/tri | total B/tri | depth | primary closest | primary any | diffuse closest | diffuse any (Mrays/s, 1 thread, per CPU-second) | nodes/tests per ray primary, diffuse");
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let two = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
     for &size in &args.sizes {
         let tris = displaced_sphere(size);
         let b1 = one
-            .install(|| Accel::build(&tris, &[], args.bvh.into()))
+            .install(|| Accel::build_with_layout(&tris, &[], args.bvh.into(), args.layout.into()))
             .info()
             .build_seconds;
-        let accel = two.install(|| Accel::build(&tris, &[], args.bvh.into()));
+        let cpu0 = cpu_seconds();
+        let accel = two
+            .install(|| Accel::build_with_layout(&tris, &[], args.bvh.into(), args.layout.into()));
+        let build_cpu = cpu0.zip(cpu_seconds()).map_or(f64::NAN, |(a, b)| b - a);
         let info = accel.info();
         let n = tris.len() as f64;
         let mut rates = Vec::new();
+        let mut per_ray = Vec::new();
         for rays in [primary_rays(args.rays), diffuse_rays(&tris, args.rays)] {
+            let mut stats = TraversalStats::default();
+            for r in &rays {
+                accel.intersect_counted(r, &mut stats);
+            }
+            let n_rays = rays.len().max(1) as f64;
+            per_ray.push(format!(
+                "{:.0}/{:.0}",
+                stats.nodes_visited as f64 / n_rays,
+                stats.prims_tested as f64 / n_rays
+            ));
             for any in [false, true] {
                 let (m, _) = throughput(&accel, &rays, 1, any, 0.5)?;
                 rates.push(m.cpu_rate().unwrap_or(m.wall_rate()));
             }
         }
         println!(
-            "{} | {:.0} | {:.0} | {:.1} | {:.1} | {} | {:.2} | {:.2} | {:.2} | {:.2}",
+            "{} | {:.0} | {:.0} ({:.0}) | {:.1} | {:.1} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {} {}",
             tris.len(),
             b1 * 1e3,
             info.build_seconds * 1e3,
+            build_cpu * 1e3,
             info.bvh_bytes as f64 / n,
             info.total_bytes as f64 / n,
             info.depth,
             rates[0],
             rates[1],
             rates[2],
-            rates[3]
+            rates[3],
+            per_ray[0],
+            per_ray[1]
         );
     }
     Ok(())

@@ -46,12 +46,14 @@ fn brute(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], ray: &Ray) -> Option<(f32,
 /// large that their f32 hit distance is only known to about 1e-2 (then a hit
 /// just before `t_max` may truly lie beyond it, and the BVH rightly prunes it).
 fn check(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], rng: &mut Rng, label: &str, clip: bool) {
-    for strategy in [
+    let layouts = [Layout::Binary, Layout::Wide4];
+    let strategies = [
         BuildStrategy::Sah,
         BuildStrategy::Median,
         BuildStrategy::None,
-    ] {
-        let accel = Accel::build(tris, spheres, strategy);
+    ];
+    for (strategy, layout) in strategies.into_iter().flat_map(|s| layouts.map(|l| (s, l))) {
+        let accel = Accel::build_with_layout(tris, spheres, strategy, layout);
         let mut boxes: Vec<Aabb> = tris.iter().map(|t| Aabb::from_points(t)).collect();
         boxes.extend(
             spheres
@@ -59,9 +61,8 @@ fn check(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], rng: &mut Rng, label: &str
                 .map(|&(c, r)| Aabb::new(c - Vec3::splat(r), c + Vec3::splat(r))),
         );
         accel
-            .bvh()
             .validate(&boxes)
-            .unwrap_or_else(|e| panic!("{label} {strategy:?}: {e}"));
+            .unwrap_or_else(|e| panic!("{label} {strategy:?} {layout:?}: {e}"));
         let mut stats = TraversalStats::default();
         let mut hits = 0;
         for k in 0..500 {
@@ -78,7 +79,7 @@ fn check(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], rng: &mut Rng, label: &str
             assert_eq!(
                 got.map(|h| h.t),
                 want.map(|w| w.0),
-                "{label} {strategy:?} ray {k}: {ray:?} {want:?}"
+                "{label} {strategy:?} {layout:?} ray {k}: {ray:?} {want:?}"
             );
             if let (Some(g), Some(w)) = (got, want) {
                 if g.prim != w.1 {
@@ -90,14 +91,14 @@ fn check(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], rng: &mut Rng, label: &str
                     assert_eq!(
                         alone.map(|a| a.0),
                         Some(g.t),
-                        "{label} {strategy:?} ray {k}: id"
+                        "{label} {strategy:?} {layout:?} ray {k}: id"
                     );
                 }
             }
             assert_eq!(
                 accel.occluded(&ray),
                 want.is_some(),
-                "{label} {strategy:?} ray {k} occluded"
+                "{label} {strategy:?} {layout:?} ray {k} occluded"
             );
         }
         assert!(stats.prims_tested >= hits && stats.nodes_visited >= hits.min(1));

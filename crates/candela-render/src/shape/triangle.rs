@@ -30,9 +30,9 @@ pub struct TriangleHit {
 /// origin and the shear that maps the direction onto +z.
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleRay {
-    origin: Vec3,
-    kz: u8,
-    shear: Vec3,
+    pub(super) origin: Vec3,
+    pub(super) kz: u8,
+    pub(super) shear: Vec3,
 }
 
 impl TriangleRay {
@@ -111,7 +111,7 @@ pub fn intersect_triangle(ray: &TriangleRay, v: &[Vec3; 3], t_max: f32) -> Optio
 /// a hit closer than this may lie behind the origin. Only hits pay for it.
 #[cold]
 #[inline(never)]
-fn t_error_bound(p: &[Vec3; 3], z: Vec3, e: [f32; 3], inv_det: f32) -> f32 {
+pub(super) fn t_error_bound(p: &[Vec3; 3], z: Vec3, e: [f32; 3], inv_det: f32) -> f32 {
     let max_z = z.abs().max_element();
     let max_x = p[0].x.abs().max(p[1].x.abs()).max(p[2].x.abs());
     let max_y = p[0].y.abs().max(p[1].y.abs()).max(p[2].y.abs());

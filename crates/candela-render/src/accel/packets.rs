@@ -1,0 +1,149 @@
+//! Leaf primitives of the 4-wide BVH packed four to a block, so a leaf is
+//! tested with SIMD (the layout of Embree's `Triangle4`).
+
+use crate::geometry::Ray;
+use crate::shape::{
+    intersect_sphere, intersect_triangle4, sphere_uv, TrianglePacket, TriangleRay4,
+};
+use candela_bvh::Bvh4;
+use glam::Vec3;
+
+/// Up to four primitives. A sphere lane keeps its centre in the `v0` rows
+/// and its radius in the `v1.x` row. 160 bytes. Primitive ids are not
+/// stored: the BVH's primitive order maps the winning slot to its id.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+pub(super) struct Block {
+    tri: TrianglePacket,
+    tri_lanes: u32,
+    sphere_lanes: u32,
+}
+
+/// The blocks of every leaf, and where each leaf's blocks start.
+#[derive(Clone, Debug)]
+pub(super) struct LeafBlocks {
+    blocks: Vec<Block>,
+    /// Indexed by a leaf's first slot: the index of its first block.
+    first_block: Vec<u32>,
+}
+
+/// The winning primitive's barycentrics (or sphere coordinates).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct LeafHit {
+    pub b1: f32,
+    pub b2: f32,
+}
+
+impl LeafBlocks {
+    /// Packs the primitives of every leaf of `bvh`; `prim(id)` gives a
+    /// triangle or `Err((center, radius))` for a sphere.
+    pub fn new(bvh: &Bvh4, prim: impl Fn(u32) -> Result<[Vec3; 3], (Vec3, f32)>) -> Self {
+        let order = bvh.primitive_order();
+        let mut leaves: Vec<(u32, u32)> = bvh
+            .nodes()
+            .iter()
+            .flat_map(|n| {
+                (0..4)
+                    .filter(|&l| n.count[l] > 0)
+                    .map(|l| (n.child[l], n.count[l]))
+            })
+            .collect();
+        leaves.sort_unstable();
+        let mut first_block = vec![0u32; order.len()];
+        let mut blocks = Vec::with_capacity(order.len() / 2);
+        for (first, count) in leaves {
+            first_block[first as usize] = blocks.len() as u32;
+            let slots = &order[first as usize..(first + count) as usize];
+            for chunk in slots.chunks(4) {
+                let mut tris = [[Vec3::ZERO; 3]; 4];
+                let mut b = Block {
+                    tri: TrianglePacket::new(&[]),
+                    tri_lanes: 0,
+                    sphere_lanes: 0,
+                };
+                for (lane, &id) in chunk.iter().enumerate() {
+                    match prim(id) {
+                        Ok(t) => {
+                            tris[lane] = t;
+                            b.tri_lanes |= 1 << lane;
+                        }
+                        Err((c, r)) => {
+                            tris[lane] = [c, Vec3::new(r, 0.0, 0.0), Vec3::ZERO];
+                            b.sphere_lanes |= 1 << lane;
+                        }
+                    }
+                }
+                b.tri = TrianglePacket::new(&tris);
+                blocks.push(b);
+            }
+        }
+        Self {
+            blocks,
+            first_block,
+        }
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.blocks.len() * std::mem::size_of::<Block>() + self.first_block.len() * 4
+    }
+
+    /// Closest hit among slots `first .. first + count` before `t_max`.
+    #[inline(always)]
+    pub fn closest(
+        &self,
+        first: u32,
+        count: u32,
+        ray: &Ray,
+        tr4: &TriangleRay4,
+        t_max: f32,
+        out: &mut LeafHit,
+    ) -> Option<(u32, f32)> {
+        let start = self.first_block[first as usize] as usize;
+        let mut best: Option<(u32, f32)> = None;
+        let mut t_best = t_max;
+        for (k, b) in self.blocks[start..start + count.div_ceil(4) as usize]
+            .iter()
+            .enumerate()
+        {
+            let slot0 = first + 4 * k as u32;
+            if b.tri_lanes != 0 {
+                if let Some((lane, h)) = intersect_triangle4(tr4, &b.tri, b.tri_lanes, t_best) {
+                    t_best = h.t;
+                    best = Some((slot0 + lane as u32, h.t));
+                    *out = LeafHit { b1: h.b1, b2: h.b2 };
+                }
+            }
+            let mut s = b.sphere_lanes;
+            while s != 0 {
+                let lane = s.trailing_zeros() as usize;
+                s &= s - 1;
+                let [c, r, _] = b.tri.triangle(lane);
+                if let Some(t) = intersect_sphere(ray.origin, ray.dir, c, r.x, t_best) {
+                    t_best = t;
+                    best = Some((slot0 + lane as u32, t));
+                    let (u, v) = sphere_uv(c, ray.at(t));
+                    *out = LeafHit { b1: u, b2: v };
+                }
+            }
+        }
+        best
+    }
+
+    /// True if any primitive in slots `first .. first + count` is hit before `t_max`.
+    #[inline(always)]
+    pub fn any(&self, first: u32, count: u32, ray: &Ray, tr4: &TriangleRay4, t_max: f32) -> bool {
+        let start = self.first_block[first as usize] as usize;
+        self.blocks[start..start + count.div_ceil(4) as usize]
+            .iter()
+            .any(|b| {
+                (b.tri_lanes != 0 && intersect_triangle4(tr4, &b.tri, b.tri_lanes, t_max).is_some())
+                    || (0..4)
+                        .filter(|l| b.sphere_lanes & (1 << l) != 0)
+                        .any(|lane| {
+                            let [c, r, _] = b.tri.triangle(lane);
+                            intersect_sphere(ray.origin, ray.dir, c, r.x, t_max).is_some()
+                        })
+            })
+    }
+}
