@@ -36,6 +36,8 @@ pub struct Progress {
     pub tile_samples: u64,
     /// Samples taken so far, the current pass included.
     pub samples_done: u64,
+    /// Rays traced so far (camera, shadow and bounce), for a rays/s figure.
+    pub rays_done: u64,
     /// An upper bound on the samples the whole render will take: every pixel
     /// still sampling runs to the end of its range. It shrinks as adaptive
     /// sampling retires pixels.

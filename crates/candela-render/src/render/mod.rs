@@ -166,6 +166,7 @@ pub fn render_with(
         ..Default::default()
     };
     let mut chunk = 1;
+    let rays = AtomicU64::new(0);
     let stop = loop {
         let left: u64 = tiles.iter().map(|t| t.samples_left(&range)).sum();
         if left == 0 {
@@ -175,29 +176,18 @@ pub fn render_with(
             break StopReason::Cancelled;
         }
         let pass_start = Instant::now();
-        let done = AtomicU64::new(stats.samples);
-        let report = |t: &TilePass| {
-            if let Some(progress) = control.progress {
-                progress(&Progress {
-                    tile_samples: t.samples,
-                    samples_done: done.fetch_add(t.samples, Ordering::Relaxed) + t.samples,
-                    samples_bound: stats.samples + left,
-                    pass: stats.passes,
-                    elapsed: start.elapsed(),
-                });
-            }
+        let pass = PassContext {
+            scene,
+            settings,
+            control,
+            chunk,
+            index: stats.passes,
+            samples_before: stats.samples,
+            samples_bound: stats.samples + left,
+            start,
+            rays: &rays,
         };
-        let cancelled = || control.cancelled();
-        let results: Vec<Option<TilePass>> = pool.install(|| {
-            tiles
-                .par_iter()
-                .map(|t| {
-                    let out = t.pass(scene, settings, chunk, &cancelled)?;
-                    report(&out);
-                    Some(out)
-                })
-                .collect()
-        });
+        let results = pool.install(|| pass.run(&tiles));
         let complete = results.iter().all(Option::is_some);
         for (tile, result) in tiles
             .iter_mut()
@@ -224,15 +214,65 @@ pub fn render_with(
             None => break StopReason::TimeBudget,
         }
     };
-    let mut film = Film::new(scene.camera.width, scene.camera.height);
-    for tile in &tiles {
-        for ((x, y), sums) in tile.rect.pixels().zip(&tile.sums) {
-            film.pixels[y as usize * film.width as usize + x as usize] = *sums;
-        }
-    }
+    let film = assemble(&tiles, scene.camera.width, scene.camera.height);
     stats.converged_pixels = tiles.iter().map(TileState::converged_count).sum();
     stats.render_time = start.elapsed();
     Ok(RenderOutput { film, stats, stop })
+}
+
+/// What every tile of one pass shares.
+struct PassContext<'a> {
+    scene: &'a Scene,
+    settings: &'a RenderSettings,
+    control: &'a RenderControl<'a>,
+    /// Samples per pixel this pass takes at most.
+    chunk: u32,
+    /// The pass number, for progress reports.
+    index: u32,
+    samples_before: u64,
+    samples_bound: u64,
+    start: Instant,
+    /// Rays traced by the whole render so far.
+    rays: &'a AtomicU64,
+}
+
+impl PassContext<'_> {
+    /// Runs the pass over all tiles in parallel; a tile is `None` if the
+    /// render was cancelled before it finished.
+    fn run(&self, tiles: &[TileState]) -> Vec<Option<TilePass>> {
+        let done = AtomicU64::new(self.samples_before);
+        let cancelled = || self.control.cancelled();
+        tiles
+            .par_iter()
+            .map(|t| {
+                let out = t.pass(self.scene, self.settings, self.chunk, &cancelled)?;
+                if let Some(progress) = self.control.progress {
+                    let rays = out.ctx.rays.total();
+                    progress(&Progress {
+                        tile_samples: out.samples,
+                        samples_done: done.fetch_add(out.samples, Ordering::Relaxed) + out.samples,
+                        rays_done: self.rays.fetch_add(rays, Ordering::Relaxed) + rays,
+                        samples_bound: self.samples_bound,
+                        pass: self.index,
+                        elapsed: self.start.elapsed(),
+                    });
+                }
+                Some(out)
+            })
+            .collect()
+    }
+}
+
+/// The full-frame film from the tiles' sums; pixels outside every tile
+/// (outside the cell) stay empty.
+fn assemble(tiles: &[TileState], width: u32, height: u32) -> Film {
+    let mut film = Film::new(width, height);
+    for tile in tiles {
+        for ((x, y), sums) in tile.rect.pixels().zip(&tile.sums) {
+            film.pixels[y as usize * width as usize + x as usize] = *sums;
+        }
+    }
+    film
 }
 
 /// The pixels to render: the cell, checked against the frame, or the frame.
