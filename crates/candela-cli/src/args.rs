@@ -39,10 +39,32 @@ pub struct RenderArgs {
     /// Scene file (.dae). Omit it to render the built-in demo scene.
     pub scene: Option<PathBuf>,
 
-    /// Samples (camera paths) per pixel.
-    #[arg(short = 's', long = "spp", default_value_t = 16, value_name = "N",
+    /// Samples (camera paths) per pixel [default: 16, or no limit with --time].
+    /// With -a, the most a pixel takes.
+    #[arg(short = 's', long = "spp", value_name = "N",
           value_parser = clap::value_parser!(u32).range(1..))]
-    pub spp: u32,
+    pub spp: Option<u32>,
+
+    /// Adaptive sampling (CS184): every BATCH samples, stop a pixel once the
+    /// 95% confidence interval of its mean illuminance is within TOL of the
+    /// mean (the course uses -a 64 0.05). Also writes <name>_rate.png.
+    #[arg(short = 'a', long = "adaptive", num_args = 2, value_names = ["BATCH", "TOL"])]
+    pub adaptive: Option<Vec<f64>>,
+
+    /// Render only the cell of DX × DY pixels at (X, Y) (y = 0 at the top),
+    /// into the full-size image; the rest stays black.
+    #[arg(short = 'p', long = "cell", num_args = 4, value_names = ["X", "Y", "DX", "DY"])]
+    pub cell: Option<Vec<u32>>,
+
+    /// Time budget in seconds: render in passes until it is spent (the last
+    /// pass may overrun by about half a second), then stop.
+    #[arg(long = "time", value_name = "SECONDS")]
+    pub time: Option<f64>,
+
+    /// Tile edge in pixels (changes only speed, never the image).
+    #[arg(long, value_name = "N", default_value_t = 16, hide = true,
+          value_parser = clap::value_parser!(u32).range(1..))]
+    pub tile: u32,
 
     /// Light samples per area light at each path vertex (one per delta light).
     #[arg(
@@ -101,6 +123,20 @@ pub struct RenderArgs {
     )]
     pub output: PathBuf,
 
+    /// PNG exposure in stops: radiance is scaled by 2^STOPS before the tone curve.
+    #[arg(
+        long,
+        value_name = "STOPS",
+        default_value_t = 0.0,
+        allow_negative_numbers = true
+    )]
+    pub exposure: f32,
+
+    /// PNG tone curve: exact sRGB, the CS184 program's (×√2, then gamma 2.2),
+    /// or an ACES filmic curve that rolls off highlights.
+    #[arg(long, value_enum, default_value_t = ToneArg::Srgb)]
+    pub tone: ToneArg,
+
     /// Seed of the sample sequence; the same seed gives the same image.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -137,6 +173,17 @@ pub enum CameraArg {
     Cs184,
     /// The literal COLLADA camera.
     File,
+}
+
+/// `--tone` values.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ToneArg {
+    /// Clamp, then the sRGB curve.
+    Srgb,
+    /// What the CS184 program writes: exposure √2, then gamma 2.2.
+    Cs184,
+    /// ACES filmic (Narkowicz's fit), then sRGB.
+    Filmic,
 }
 
 /// `--sampler` values.
@@ -186,9 +233,42 @@ mod tests {
         ])
         .unwrap();
         assert_eq!(cli.render.resolution, vec![480, 360]);
-        assert_eq!(cli.render.spp, 16);
+        assert_eq!(cli.render.spp, Some(16));
         assert_eq!(cli.render.threads, Some(2));
         assert_eq!(cli.render.scene, Some(PathBuf::from("scene.dae")));
+    }
+
+    #[test]
+    fn part5_flags_parse() {
+        let cli = Cli::try_parse_from([
+            "candela",
+            "-a",
+            "64",
+            "0.05",
+            "-p",
+            "10",
+            "20",
+            "30",
+            "40",
+            "--time",
+            "2.5",
+            "--exposure",
+            "-1.5",
+            "--tone",
+            "cs184",
+            "--tile",
+            "8",
+        ])
+        .unwrap();
+        let r = cli.render;
+        assert_eq!(r.adaptive, Some(vec![64.0, 0.05]));
+        assert_eq!(r.cell, Some(vec![10, 20, 30, 40]));
+        assert_eq!(r.time, Some(2.5));
+        assert_eq!(r.exposure, -1.5);
+        assert_eq!(r.tone, ToneArg::Cs184);
+        assert_eq!((r.tile, r.spp), (8, None));
+        assert!(Cli::try_parse_from(["candela", "-p", "1", "2", "3"]).is_err());
+        assert!(Cli::try_parse_from(["candela", "--tile", "0"]).is_err());
     }
 
     #[test]

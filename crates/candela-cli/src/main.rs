@@ -1,12 +1,15 @@
 //! `candela`: render a scene from the command line.
 //!
 //! Exit codes: 0 success, 1 a failure while rendering or writing, 2 bad
-//! input (unknown flag, unreadable or malformed scene).
+//! input (unknown flag, unreadable or malformed scene), 130 stopped by
+//! Ctrl-C (the partial image was written).
 
 mod args;
 mod bench;
+mod output;
 mod progress;
 mod render_cmd;
+mod report;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -14,11 +17,12 @@ use std::process::ExitCode;
 fn main() -> ExitCode {
     let cli = args::Cli::parse();
     let result = match cli.command {
-        Some(args::Command::Bench(cmd)) => bench::run(cmd),
+        Some(args::Command::Bench(cmd)) => bench::run(cmd).map(|()| render_cmd::Outcome::Done),
         None => render_cmd::run(&cli.render),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(render_cmd::Outcome::Done) => ExitCode::SUCCESS,
+        Ok(render_cmd::Outcome::Interrupted) => ExitCode::from(render_cmd::INTERRUPTED),
         Err(err) => {
             eprintln!("candela: error: {err:#}");
             ExitCode::from(exit_code(&err))

@@ -1,18 +1,37 @@
 //! `candela [flags] [scene.dae]`: load, build, render, write.
+//!
+//! The render runs in progressive passes: Ctrl-C (or `--time`) stops it
+//! between passes, and the image rendered so far is still written.
 
-use crate::args::{BvhArg, CameraArg, RenderArgs, SamplerArg};
-use crate::progress::samples_bar;
+use crate::args::{BvhArg, CameraArg, RenderArgs, SamplerArg, ToneArg};
+use crate::output::{self, OutputFormat, OutputOptions};
+use crate::progress::RenderBar;
+use crate::report::{print_stats, ReportContext};
 use anyhow::{Context, Result};
 use candela_bvh::BuildStrategy;
-use candela_image::{write_exr, write_png, ExrLayers, RgbImage, ToneMap};
+use candela_image::{ToneCurve, ToneMap};
 use candela_render::camera::framing::CameraMode;
+use candela_render::film::{Adaptive, PixelRect};
 use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
-use candela_render::render::{render, RenderOutput, RenderSettings};
+use candela_render::render::{
+    render_with, Cancel, Progress, RenderControl, RenderSettings, StopReason,
+};
 use candela_render::sampling::SamplerKind;
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{LoadOptions, Loaded};
-use std::path::Path;
-use std::time::Instant;
+use std::time::{Duration, Instant};
+
+/// Exit code of a render stopped by Ctrl-C (128 + SIGINT, as shells do).
+pub const INTERRUPTED: u8 = 130;
+
+/// How a render command ended, when it did not fail.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// The render ran to its end (all samples, or the time budget).
+    Done,
+    /// Ctrl-C stopped it; the partial image was written.
+    Interrupted,
+}
 
 /// A command line that parses but asks for something impossible.
 #[derive(Debug, thiserror::Error)]
@@ -20,12 +39,86 @@ use std::time::Instant;
 pub struct UsageError(pub String);
 
 /// Runs one render from the command line.
-pub fn run(args: &RenderArgs) -> Result<()> {
-    let format = OutputFormat::of(&args.output)?;
+pub fn run(args: &RenderArgs) -> Result<Outcome> {
+    let format = OutputFormat::of(&args.output).ok_or_else(|| {
+        UsageError(format!(
+            "-f {}: the output must end in .png or .exr",
+            args.output.display()
+        ))
+    })?;
     let (width, height) = (args.resolution[0], args.resolution[1]);
     if width == 0 || height == 0 {
         return Err(UsageError(format!("-r {width} {height}: the image must not be empty")).into());
     }
+    let adaptive = adaptive_arg(args.adaptive.as_deref())?;
+    let cell = cell_arg(args.cell.as_deref(), width, height)?;
+    let region = cell.unwrap_or(PixelRect::full(width, height));
+    let time_budget = time_arg(args.time)?;
+    let (scene, load_time) = load_scene(args, width, height)?;
+    let settings = RenderSettings {
+        spp: spp(args),
+        seed: args.seed,
+        integrator: integrator(args),
+        sampler: match args.sampler {
+            SamplerArg::Sobol => SamplerKind::Sobol,
+            SamplerArg::Independent => SamplerKind::Independent,
+        },
+        threads: args.threads.unwrap_or(0),
+        cell,
+        sample_range: None,
+        adaptive,
+        time_budget,
+        tile: args.tile,
+    };
+    let cancel = Cancel::new();
+    watch_ctrl_c(&cancel, args.quiet);
+    let bar = RenderBar::new(time_budget, args.quiet);
+    let on_progress = |p: &Progress| bar.update(p);
+    let control = RenderControl {
+        cancel: Some(cancel),
+        progress: Some(&on_progress),
+    };
+    let output = render_with(&scene, &settings, &control)?;
+    bar.finish();
+    let max_samples = if args.spp.is_none() && time_budget.is_some() {
+        output.film.sample_spread(region).max
+    } else {
+        settings.spp
+    };
+    let opts = OutputOptions {
+        tone: ToneMap {
+            exposure: args.exposure,
+            curve: match args.tone {
+                ToneArg::Srgb => ToneCurve::Srgb,
+                ToneArg::Cs184 => ToneCurve::Cs184,
+                ToneArg::Filmic => ToneCurve::Filmic,
+            },
+        },
+        sample_rate: adaptive.is_some(),
+        max_samples,
+    };
+    let written = output::write(&args.output, format, &output.film, &opts)?;
+    if !args.quiet {
+        let cx = ReportContext {
+            load_time,
+            path_integrator: matches!(settings.integrator, IntegratorKind::Path(_)),
+            adaptive: adaptive.is_some(),
+            region,
+            max_samples,
+        };
+        print_stats(&scene, &output, &cx);
+        for path in &written {
+            eprintln!("candela: wrote {}", path.display());
+        }
+    }
+    Ok(match output.stop {
+        StopReason::Cancelled => Outcome::Interrupted,
+        StopReason::Complete | StopReason::TimeBudget => Outcome::Done,
+    })
+}
+
+/// Loads the scene (or the demo), prints its warnings, and builds it.
+fn load_scene(args: &RenderArgs, width: u32, height: u32) -> Result<(Scene, Duration)> {
     let load_start = Instant::now();
     let loaded = match &args.scene {
         Some(path) => candela_scene::load(
@@ -79,26 +172,83 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             );
         }
     }
-    let settings = RenderSettings {
-        spp: args.spp,
-        seed: args.seed,
-        integrator: integrator(args),
-        sampler: match args.sampler {
-            SamplerArg::Sobol => SamplerKind::Sobol,
-            SamplerArg::Independent => SamplerKind::Independent,
-        },
-        threads: args.threads.unwrap_or(0),
-    };
-    let total = width as u64 * height as u64 * args.spp as u64;
-    let bar = samples_bar(total, args.quiet);
-    let output = render(&scene, &settings, &|n| bar.inc(n))?;
-    bar.finish_and_clear();
-    write_output(&args.output, format, &output)?;
-    if !args.quiet {
-        print_stats(&scene, &output, load_time);
-        eprintln!("candela: wrote {}", args.output.display());
+    Ok((scene, load_time))
+}
+
+/// Samples per pixel: `-s`, else 16, else (under a time budget) no limit.
+fn spp(args: &RenderArgs) -> u32 {
+    match (args.spp, args.time) {
+        (Some(n), _) => n,
+        (None, Some(_)) => u32::MAX,
+        (None, None) => 16,
     }
-    Ok(())
+}
+
+/// The first Ctrl-C cancels the render (which then writes what it has);
+/// a second one exits at once.
+fn watch_ctrl_c(cancel: &Cancel, quiet: bool) {
+    let cancel = cancel.clone();
+    let installed = ctrlc::set_handler(move || {
+        if cancel.is_cancelled() {
+            std::process::exit(INTERRUPTED.into());
+        }
+        cancel.cancel();
+    });
+    if let Err(err) = installed {
+        if !quiet {
+            eprintln!("candela: warning: Ctrl-C will not stop the render cleanly: {err}");
+        }
+    }
+}
+
+/// `-a BATCH TOL`, checked.
+fn adaptive_arg(values: Option<&[f64]>) -> Result<Option<Adaptive>> {
+    let Some(&[batch, tolerance]) = values else {
+        return Ok(None);
+    };
+    let whole = batch.fract() == 0.0 && (1.0..=u32::MAX as f64).contains(&batch);
+    if !whole || !tolerance.is_finite() || tolerance < 0.0 {
+        return Err(UsageError(format!(
+            "-a {batch} {tolerance}: BATCH must be a whole number >= 1 and TOL a number >= 0"
+        ))
+        .into());
+    }
+    Ok(Some(Adaptive {
+        batch: batch as u32,
+        tolerance,
+    }))
+}
+
+/// `-p X Y DX DY`, checked against the frame.
+fn cell_arg(values: Option<&[u32]>, width: u32, height: u32) -> Result<Option<PixelRect>> {
+    let Some(&[x, y, dx, dy]) = values else {
+        return Ok(None);
+    };
+    let cell = PixelRect::new(x, y, dx, dy);
+    if !cell.fits_in(width, height) {
+        return Err(UsageError(format!(
+            "-p {x} {y} {dx} {dy}: the cell must be non-empty and inside the {width}x{height} image"
+        ))
+        .into());
+    }
+    Ok(Some(cell))
+}
+
+/// `--time SECONDS`, checked.
+fn time_arg(seconds: Option<f64>) -> Result<Option<Duration>> {
+    let Some(seconds) = seconds else {
+        return Ok(None);
+    };
+    Duration::try_from_secs_f64(seconds)
+        .ok()
+        .filter(|d| !d.is_zero())
+        .map(Some)
+        .ok_or_else(|| {
+            UsageError(format!(
+                "--time {seconds}: give a positive number of seconds"
+            ))
+            .into()
+        })
 }
 
 /// The integrator the flags ask for.
@@ -128,79 +278,4 @@ fn integrator(args: &RenderArgs) -> IntegratorKind {
         light_samples: args.light_samples,
         roulette_from: (!args.no_roulette).then_some(3),
     })
-}
-
-#[derive(Clone, Copy)]
-enum OutputFormat {
-    Png,
-    Exr,
-}
-
-impl OutputFormat {
-    fn of(path: &Path) -> Result<Self> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match ext.as_deref() {
-            Some("png") => Ok(Self::Png),
-            Some("exr") => Ok(Self::Exr),
-            _ => Err(UsageError(format!(
-                "-f {}: the output must end in .png or .exr",
-                path.display()
-            ))
-            .into()),
-        }
-    }
-}
-
-fn write_output(path: &Path, format: OutputFormat, output: &RenderOutput) -> Result<()> {
-    let film = &output.film;
-    let pixels = film.resolve().into_iter().map(|c| c.to_array()).collect();
-    let image = RgbImage::from_pixels(film.width as usize, film.height as usize, pixels)?;
-    match format {
-        OutputFormat::Png => write_png(path, &image, &ToneMap::default()),
-        OutputFormat::Exr => write_exr(path, &ExrLayers::beauty(image)),
-    }
-    .with_context(|| format!("cannot write {}", path.display()))
-}
-
-fn print_stats(scene: &Scene, output: &RenderOutput, load_time: std::time::Duration) {
-    let s = &output.stats;
-    let a = scene.accel_info();
-    eprintln!(
-        "candela: {} primitives, load {:.1} ms, BVH build {:.1} ms ({} nodes, depth {}, {:.1} bytes/primitive)",
-        scene.primitive_count(),
-        load_time.as_secs_f64() * 1e3,
-        scene.build_time.as_secs_f64() * 1e3,
-        a.nodes,
-        a.depth,
-        a.total_bytes as f64 / scene.primitive_count().max(1) as f64,
-    );
-    eprintln!(
-        "candela: {} rays (camera {}, shadow {}, bounce {}) in {:.3} s on {} threads: {:.2} Mrays/s, {:.0} samples/s",
-        s.rays.total(),
-        s.rays.camera,
-        s.rays.shadow,
-        s.rays.bounce,
-        s.render_time.as_secs_f64(),
-        s.threads,
-        s.mrays_per_second(),
-        s.samples_per_second(),
-    );
-    eprintln!(
-        "candela: {:.1} nodes visited and {:.1} intersection tests per ray",
-        s.nodes_per_ray(),
-        s.tests_per_ray()
-    );
-    eprintln!(
-        "candela: {:.2} segments per path on average",
-        s.mean_path_length()
-    );
-    if s.invalid_samples > 0 {
-        eprintln!(
-            "candela: warning: {} NaN or infinite samples were dropped",
-            s.invalid_samples
-        );
-    }
 }

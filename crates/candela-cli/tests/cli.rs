@@ -1,0 +1,226 @@
+//! The `candela` binary end to end: exit codes, files written (and not
+//! written), and the Part 5 flags. Renders the built-in demo scene small.
+
+use candela_image::{read_exr_layers, read_png};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A fresh, empty folder for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("candela-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp folder");
+    dir
+}
+
+/// Runs `candela` on the demo scene at 48 × 36, on 2 threads unless `args`
+/// say otherwise.
+fn candela(args: &[&str]) -> Output {
+    let threads: &[&str] = if args.contains(&"-t") {
+        &[]
+    } else {
+        &["-t", "2"]
+    };
+    Command::new(env!("CARGO_BIN_EXE_candela"))
+        .args(["-r", "48", "36"])
+        .args(threads)
+        .args(args)
+        .output()
+        .expect("candela runs")
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().expect("UTF-8 temp path")
+}
+
+#[test]
+fn a_failing_write_exits_non_zero_and_leaves_no_file() {
+    let dir = scratch("failwrite");
+    let out = dir.join("missing").join("out.png");
+    let run = candela(&["-s", "1", "-q", "-f", path(&out)]);
+    assert_eq!(
+        run.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(String::from_utf8_lossy(&run.stderr).contains("cannot write"));
+    assert!(!out.exists());
+    let left: Vec<_> = std::fs::read_dir(&dir).expect("folder").collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
+
+#[test]
+fn output_is_byte_identical_for_any_thread_count_and_tiling() {
+    let dir = scratch("determinism");
+    let mut images = Vec::new();
+    for (i, (threads, tile)) in [("1", "16"), ("2", "5"), ("8", "64")].iter().enumerate() {
+        let out = dir.join(format!("out{i}.png"));
+        let run = candela(&[
+            "-s",
+            "32",
+            "-a",
+            "8",
+            "0.2",
+            "-q",
+            "-t",
+            threads,
+            "--tile",
+            tile,
+            "-f",
+            path(&out),
+        ]);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let rate = std::fs::read(dir.join(format!("out{i}_rate.png"))).expect("rate image written");
+        images.push((std::fs::read(&out).expect("image written"), rate));
+    }
+    assert!(images.windows(2).all(|w| w[0] == w[1]));
+}
+
+#[test]
+fn exr_carries_the_denoiser_layers_and_sample_counts() {
+    let dir = scratch("exr");
+    let out = dir.join("out.exr");
+    let run = candela(&["-s", "16", "-a", "8", "0.5", "-q", "-f", path(&out)]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let layers = read_exr_layers(&out).expect("EXR reads back");
+    let albedo = layers.albedo.expect("albedo layer");
+    let normal = layers.normal.expect("normal layer");
+    let counts = layers.sample_count.expect("samples layer");
+    assert!(albedo
+        .pixels()
+        .iter()
+        .flatten()
+        .all(|&a| (0.0..=1.0).contains(&a)));
+    assert!(normal
+        .pixels()
+        .iter()
+        .all(|n| n.iter().map(|c| c * c).sum::<f32>() <= 1.0 + 1e-3));
+    // Adaptive: every pixel between one batch and -s, at a batch multiple.
+    assert!(counts
+        .values()
+        .iter()
+        .all(|&n| (8.0..=16.0).contains(&n) && n % 8.0 == 0.0));
+    assert!(dir.join("out_rate.png").exists());
+}
+
+#[test]
+fn a_cell_renders_into_the_full_frame() {
+    let dir = scratch("cell");
+    let (full, cell) = (dir.join("full.png"), dir.join("cell.png"));
+    assert!(candela(&["-s", "4", "-q", "-f", path(&full)])
+        .status
+        .success());
+    let run = candela(&[
+        "-s",
+        "4",
+        "-q",
+        "-p",
+        "10",
+        "5",
+        "20",
+        "12",
+        "-f",
+        path(&cell),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let (full, cell) = (read_png(&full).expect("png"), read_png(&cell).expect("png"));
+    assert_eq!(cell.size(), (48, 36));
+    for y in 0..36 {
+        for x in 0..48 {
+            let inside = (10..30).contains(&x) && (5..17).contains(&y);
+            let expected = if inside {
+                full.get(x, y)
+            } else {
+                Some([0.0; 3])
+            };
+            assert_eq!(cell.get(x, y), expected, "pixel ({x}, {y})");
+        }
+    }
+}
+
+#[test]
+fn impossible_flags_are_usage_errors() {
+    for args in [
+        &["-a", "0", "0.05"][..],
+        &["-a", "6.5", "0.05"],
+        &["-a", "64", "-1"],
+        &["-p", "40", "0", "20", "10"],
+        &["-p", "0", "0", "0", "10"],
+        &["--time", "0"],
+    ] {
+        let run = candela(&[args, &["-q", "-f", "/nonexistent/never.png"]].concat());
+        assert_eq!(
+            run.status.code(),
+            Some(2),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+    }
+}
+
+#[test]
+fn a_time_budget_ends_the_render_and_reports_samples() {
+    let dir = scratch("time");
+    let out = dir.join("out.png");
+    let start = std::time::Instant::now();
+    let run = candela(&["--time", "1", "-f", path(&out)]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(start.elapsed().as_secs_f64() < 10.0);
+    let log = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        log.contains("time budget spent: samples per pixel min"),
+        "{log}"
+    );
+    assert!(out.exists());
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_writes_the_partial_image_and_exits_130() {
+    let dir = scratch("ctrlc");
+    let out = dir.join("out.png");
+    let child = Command::new(env!("CARGO_BIN_EXE_candela"))
+        .args([
+            "-r",
+            "48",
+            "36",
+            "-t",
+            "2",
+            "-s",
+            "1000000",
+            "-f",
+            path(&out),
+        ])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("candela starts");
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(kill.success());
+    let run = child.wait_with_output().expect("candela ends");
+    let log = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(130), "{log}");
+    assert!(log.contains("interrupted: the image is partial"), "{log}");
+    let image = read_png(&out).expect("partial image written");
+    assert!(image.pixels().iter().flatten().any(|&c| c > 0.0));
+}
