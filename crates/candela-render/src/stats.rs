@@ -48,6 +48,10 @@ pub struct RenderStats {
     pub render_time: Duration,
     /// Threads used.
     pub threads: usize,
+    /// Progressive passes completed.
+    pub passes: u32,
+    /// Pixels that adaptive sampling stopped because they converged.
+    pub converged_pixels: u64,
 }
 
 impl RenderStats {

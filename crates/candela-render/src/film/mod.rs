@@ -1,58 +1,22 @@
 //! The film: per-pixel sums that merge by addition.
 //!
-//! Each pixel keeps the sum of its radiance samples, the sum of their
-//! illuminance (luminance) and of its square, and the sample count. Tiles,
-//! threads, sample ranges and machines merge by adding these sums, and the
-//! adaptive sampler's confidence test reads the same numbers (Tungsten's
+//! Each pixel keeps the sums of its radiance samples and of their squares,
+//! the sums of their illuminance (luminance) and of its square, the sums of
+//! the first-hit albedo and shading normal (denoiser AOVs), and the sample
+//! count. Tiles, threads, cells, sample ranges and machines merge by adding
+//! these sums, and the adaptive sampler's confidence test
+//! ([`adaptive::converged`]) reads the same numbers (Tungsten's
 //! `SampleRecord`). The image is resolved only at the end.
 
-use glam::{DVec3, Vec3};
+pub mod adaptive;
+mod rect;
+mod sums;
 
-/// Rec. 709 luminance of a linear RGB colour.
-pub fn luminance(c: Vec3) -> f32 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
-}
+pub use adaptive::Adaptive;
+pub use rect::PixelRect;
+pub use sums::{luminance, PixelSums, SampleValue};
 
-/// The sums kept for one pixel.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PixelSums {
-    /// Sum of radiance samples.
-    pub radiance: DVec3,
-    /// Sum of the samples' luminance.
-    pub lum: f64,
-    /// Sum of the squared luminance.
-    pub lum_sq: f64,
-    /// Number of samples.
-    pub count: u32,
-}
-
-impl PixelSums {
-    /// Adds one radiance sample.
-    pub fn add_sample(&mut self, l: Vec3) {
-        let y = luminance(l) as f64;
-        self.radiance += l.as_dvec3();
-        self.lum += y;
-        self.lum_sq += y * y;
-        self.count += 1;
-    }
-
-    /// Adds another pixel's sums (merging sample sets).
-    pub fn merge(&mut self, other: &PixelSums) {
-        self.radiance += other.radiance;
-        self.lum += other.lum;
-        self.lum_sq += other.lum_sq;
-        self.count += other.count;
-    }
-
-    /// The pixel's estimate: the mean radiance (black with no samples).
-    pub fn mean(&self) -> Vec3 {
-        if self.count == 0 {
-            Vec3::ZERO
-        } else {
-            (self.radiance / self.count as f64).as_vec3()
-        }
-    }
-}
+use glam::Vec3;
 
 /// A `width` × `height` grid of [`PixelSums`], row-major, y = 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
@@ -65,8 +29,30 @@ pub struct Film {
     pub pixels: Vec<PixelSums>,
 }
 
+/// Why two films cannot be merged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("cannot merge a {b_w}x{b_h} film into a {a_w}x{a_h} film")]
+pub struct FilmSizeMismatch {
+    a_w: u32,
+    a_h: u32,
+    b_w: u32,
+    b_h: u32,
+}
+
+/// The smallest, mean and largest sample count over some pixels: what a
+/// time-budgeted or adaptive render reports.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleSpread {
+    /// Fewest samples of any pixel.
+    pub min: u32,
+    /// Mean samples per pixel.
+    pub mean: f64,
+    /// Most samples of any pixel.
+    pub max: u32,
+}
+
 impl Film {
-    /// An empty film.
+    /// An empty film: every pixel black with no samples.
     pub fn new(width: u32, height: u32) -> Self {
         Self {
             width,
@@ -75,61 +61,86 @@ impl Film {
         }
     }
 
+    /// The whole frame as a rectangle.
+    pub fn rect(&self) -> PixelRect {
+        PixelRect::full(self.width, self.height)
+    }
+
     /// The sums of pixel (x, y).
+    ///
+    /// # Panics
+    /// If (x, y) lies outside the film.
     pub fn pixel(&self, x: u32, y: u32) -> &PixelSums {
         &self.pixels[y as usize * self.width as usize + x as usize]
     }
 
-    /// Adds another film of the same size, pixel by pixel.
-    ///
-    /// # Panics
-    /// If the sizes differ: merging films of different renders is a bug.
-    pub fn merge(&mut self, other: &Film) {
-        assert_eq!(
-            (self.width, self.height),
-            (other.width, other.height),
-            "films of different sizes"
-        );
+    /// Adds another film of the same size, pixel by pixel. Merging is how
+    /// cells, sample ranges or machines combine: the sums of disjoint cells
+    /// give the full frame exactly (adding zero is exact); two sample ranges
+    /// give the union up to f64 rounding (addition is not associative).
+    pub fn merge(&mut self, other: &Film) -> Result<(), FilmSizeMismatch> {
+        if (self.width, self.height) != (other.width, other.height) {
+            return Err(FilmSizeMismatch {
+                a_w: self.width,
+                a_h: self.height,
+                b_w: other.width,
+                b_h: other.height,
+            });
+        }
         for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
             a.merge(b);
         }
+        Ok(())
     }
 
     /// The image: mean radiance per pixel, row-major.
     pub fn resolve(&self) -> Vec<Vec3> {
         self.pixels.iter().map(PixelSums::mean).collect()
     }
+
+    /// Mean first-hit albedo per pixel (black where nothing was hit).
+    pub fn albedo(&self) -> Vec<Vec3> {
+        self.pixels.iter().map(PixelSums::mean_albedo).collect()
+    }
+
+    /// Mean first-hit shading normal per pixel, facing the camera, in world
+    /// space; not renormalised, as denoisers expect (zero where nothing was
+    /// hit).
+    pub fn normal(&self) -> Vec<Vec3> {
+        self.pixels.iter().map(PixelSums::mean_normal).collect()
+    }
+
+    /// Standard error of each pixel's mean radiance, per channel.
+    pub fn std_error(&self) -> Vec<Vec3> {
+        self.pixels.iter().map(PixelSums::std_error).collect()
+    }
+
+    /// Samples taken per pixel.
+    pub fn sample_counts(&self) -> Vec<u32> {
+        self.pixels.iter().map(|p| p.count).collect()
+    }
+
+    /// Sample-count spread over the pixels of `rect` (all zero if `rect` is
+    /// empty or outside the film).
+    pub fn sample_spread(&self, rect: PixelRect) -> SampleSpread {
+        let rect = rect.clamped(self.width, self.height);
+        let (mut min, mut max, mut total) = (u32::MAX, 0, 0u64);
+        for (x, y) in rect.pixels() {
+            let n = self.pixel(x, y).count;
+            min = min.min(n);
+            max = max.max(n);
+            total += n as u64;
+        }
+        if rect.area() == 0 {
+            return SampleSpread::default();
+        }
+        SampleSpread {
+            min,
+            mean: total as f64 / rect.area() as f64,
+            max,
+        }
+    }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn merging_sums_equals_adding_all_samples_to_one_pixel() {
-        let samples = [
-            Vec3::new(1.0, 2.0, 3.0),
-            Vec3::new(0.5, 0.0, 0.25),
-            Vec3::new(4.0, 4.0, 4.0),
-        ];
-        let mut all = PixelSums::default();
-        samples.iter().for_each(|&s| all.add_sample(s));
-        let mut a = PixelSums::default();
-        a.add_sample(samples[0]);
-        let mut b = PixelSums::default();
-        b.add_sample(samples[1]);
-        b.add_sample(samples[2]);
-        a.merge(&b);
-        assert_eq!(a.count, 3);
-        assert!((a.radiance - all.radiance).length() < 1e-12);
-        assert!((a.lum_sq - all.lum_sq).abs() < 1e-12);
-        let mean = a.mean();
-        assert!((mean - Vec3::new(5.5, 6.0, 7.25) / 3.0).length() < 1e-6);
-    }
-
-    #[test]
-    fn empty_pixel_resolves_to_black() {
-        assert_eq!(PixelSums::default().mean(), Vec3::ZERO);
-        assert!((luminance(Vec3::ONE) - 1.0).abs() < 1e-6);
-    }
-}
+mod tests;

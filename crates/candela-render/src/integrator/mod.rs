@@ -2,7 +2,8 @@
 //!
 //! Each integrator is one small function, chosen once per render by
 //! [`IntegratorKind`] (Yocto/GL's layout); they share the per-thread
-//! [`ThreadContext`] for statistics.
+//! [`ThreadContext`] for statistics. [`sample`] also returns the first
+//! hit's albedo and normal, the auxiliary images denoisers want.
 
 pub mod direct;
 mod normals;
@@ -11,9 +12,11 @@ pub mod path;
 pub use direct::LightingMode;
 pub use path::PathSettings;
 
+use crate::film::SampleValue;
 use crate::geometry::Ray;
+use crate::material::Material;
 use crate::sampling::Sampler;
-use crate::scene::Scene;
+use crate::scene::{Scene, SurfaceHit};
 use crate::stats::RayCounts;
 use glam::Vec3;
 
@@ -37,7 +40,52 @@ pub struct ThreadContext {
     pub path_segments: u64,
 }
 
-/// Radiance (or the AOV the integrator shows) along the camera `ray`.
+/// The denoiser AOVs of one camera sample, filled in by the integrator at
+/// the camera ray's first hit; zero if the ray escapes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FirstHitAov {
+    /// The BSDF's albedo ([`crate::bsdf::Bsdf::albedo`]); zero for a pure
+    /// emitter, which has no BSDF.
+    pub albedo: Vec3,
+    /// The shading normal flipped toward the camera, in world space.
+    pub normal: Vec3,
+}
+
+impl FirstHitAov {
+    /// Records the AOVs of the first hit.
+    pub fn record(&mut self, hit: &SurfaceHit, material: &Material) {
+        self.normal = hit.ns_facing();
+        self.albedo = material
+            .bsdf_at(hit)
+            .map_or(Vec3::ZERO, |bsdf| bsdf.albedo());
+    }
+}
+
+/// One camera sample: radiance (or the colour the integrator shows) along
+/// `ray`, with the first hit's AOVs.
+pub fn sample(
+    kind: &IntegratorKind,
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    ctx: &mut ThreadContext,
+) -> SampleValue {
+    let mut aov = FirstHitAov::default();
+    let radiance = match kind {
+        IntegratorKind::Normals => normals::normals(scene, ray, ctx, &mut aov),
+        IntegratorKind::Path(settings) => {
+            path::path_radiance(scene, ray, settings, sampler, ctx, &mut aov)
+        }
+    };
+    SampleValue {
+        radiance,
+        albedo: aov.albedo,
+        normal: aov.normal,
+    }
+}
+
+/// Radiance (or the colour the integrator shows) along the camera `ray`,
+/// without AOVs.
 pub fn radiance(
     kind: &IntegratorKind,
     scene: &Scene,
@@ -45,8 +93,5 @@ pub fn radiance(
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
 ) -> Vec3 {
-    match kind {
-        IntegratorKind::Normals => normals::normals(scene, ray, ctx),
-        IntegratorKind::Path(settings) => path::path_radiance(scene, ray, settings, sampler, ctx),
-    }
+    sample(kind, scene, ray, sampler, ctx).radiance
 }

@@ -10,7 +10,7 @@
 //! for the direct-only view and `2..=m` for the indirect-only view.
 
 use super::direct::{bsdf_hit_weight, estimate_direct, LightingMode};
-use super::ThreadContext;
+use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::{Frame, Ray};
 use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
@@ -52,13 +52,15 @@ struct PrevVertex {
     specular: bool,
 }
 
-/// Radiance along the camera ray `ray`.
+/// Radiance along the camera ray `ray`; the first hit's albedo and normal
+/// go to `aov`.
 pub fn path_radiance(
     scene: &Scene,
     camera_ray: &Ray,
     settings: &PathSettings,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
+    aov: &mut FirstHitAov,
 ) -> Vec3 {
     let max_depth = *settings.bounces.end();
     let mut l = Vec3::ZERO;
@@ -74,6 +76,9 @@ pub fn path_radiance(
             break;
         };
         let material = scene.material(hit.material);
+        if depth == 0 {
+            aov.record(&hit, material);
+        }
         if settings.bounces.contains(&depth) && hit.front_face {
             if let Some(le) = material.emission {
                 l += beta * le * emitter_weight(scene, &ray, &hit, prev, settings);

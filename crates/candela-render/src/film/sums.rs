@@ -1,0 +1,124 @@
+//! The sums one pixel keeps.
+
+use glam::{DVec3, Vec3};
+
+/// Rec. 709 luminance of a linear RGB colour: the "illuminance" whose
+/// spread CS184's adaptive sampling watches.
+pub fn luminance(c: Vec3) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// What one camera sample contributes: its radiance and, for denoisers, the
+/// albedo and camera-facing shading normal at its first hit (zero where the
+/// camera ray escapes).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleValue {
+    /// Radiance (or the colour the integrator shows).
+    pub radiance: Vec3,
+    /// Albedo of the first surface hit.
+    pub albedo: Vec3,
+    /// Shading normal at the first hit, flipped toward the camera.
+    pub normal: Vec3,
+}
+
+/// The sums kept for one pixel. Every field is a sum over samples, so two
+/// pixels' sums [`merge`](PixelSums::merge) into the sums of both sample sets.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelSums {
+    /// Sum of radiance samples.
+    pub radiance: DVec3,
+    /// Sum of squared radiance samples, per channel (for standard errors
+    /// and image z-tests).
+    pub radiance_sq: DVec3,
+    /// Sum of the samples' luminance.
+    pub lum: f64,
+    /// Sum of the squared luminance.
+    pub lum_sq: f64,
+    /// Sum of first-hit albedos.
+    pub albedo: DVec3,
+    /// Sum of first-hit shading normals.
+    pub normal: DVec3,
+    /// Number of samples, including invalid (NaN or infinite) ones, which
+    /// count as black.
+    pub count: u32,
+}
+
+impl PixelSums {
+    /// Adds one radiance sample with no AOVs.
+    pub fn add_sample(&mut self, l: Vec3) {
+        self.add(&SampleValue {
+            radiance: l,
+            ..Default::default()
+        });
+    }
+
+    /// Adds one sample. The caller decides what to do with non-finite
+    /// radiance (see [`PixelSums::add_invalid`]).
+    pub fn add(&mut self, s: &SampleValue) {
+        let l = s.radiance.as_dvec3();
+        let y = luminance(s.radiance) as f64;
+        self.radiance += l;
+        self.radiance_sq += l * l;
+        self.lum += y;
+        self.lum_sq += y * y;
+        self.albedo += s.albedo.as_dvec3();
+        self.normal += s.normal.as_dvec3();
+        self.count += 1;
+    }
+
+    /// Counts a sample whose radiance was NaN or infinite as black, keeping
+    /// its AOVs: a NaN is a bug to report, not to hide in a dimmer mean.
+    pub fn add_invalid(&mut self, s: &SampleValue) {
+        self.add(&SampleValue {
+            radiance: Vec3::ZERO,
+            ..*s
+        });
+    }
+
+    /// Adds another pixel's sums (merging sample sets).
+    pub fn merge(&mut self, other: &PixelSums) {
+        self.radiance += other.radiance;
+        self.radiance_sq += other.radiance_sq;
+        self.lum += other.lum;
+        self.lum_sq += other.lum_sq;
+        self.albedo += other.albedo;
+        self.normal += other.normal;
+        self.count += other.count;
+    }
+
+    /// The pixel's estimate: the mean radiance (black with no samples).
+    pub fn mean(&self) -> Vec3 {
+        self.average(self.radiance)
+    }
+
+    /// Mean first-hit albedo.
+    pub fn mean_albedo(&self) -> Vec3 {
+        self.average(self.albedo)
+    }
+
+    /// Mean first-hit shading normal (not renormalised).
+    pub fn mean_normal(&self) -> Vec3 {
+        self.average(self.normal)
+    }
+
+    /// Standard error of the mean radiance per channel,
+    /// `sqrt(sample variance / n)`; zero with fewer than two samples.
+    pub fn std_error(&self) -> Vec3 {
+        if self.count < 2 {
+            return Vec3::ZERO;
+        }
+        let n = self.count as f64;
+        let mean = self.radiance / n;
+        // Clamped: rounding can make the difference slightly negative.
+        let var = ((self.radiance_sq - self.radiance * mean) / (n - 1.0)).max(DVec3::ZERO);
+        (var / n).sqrt().as_vec3()
+    }
+
+    fn average(&self, sum: DVec3) -> Vec3 {
+        if self.count == 0 {
+            Vec3::ZERO
+        } else {
+            (sum / self.count as f64).as_vec3()
+        }
+    }
+}
