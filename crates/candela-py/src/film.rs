@@ -3,7 +3,8 @@
 use crate::stats::StatsRecord;
 use crate::wire::{self, PlacedFilm};
 use candela_image::{write_exr, write_png, ExrLayers, GrayImage, RgbImage, ToneMap};
-use candela_render::film::Film;
+use candela_render::film::{Film, PixelSums};
+use glam::{DVec3, Vec3};
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -29,6 +30,17 @@ fn reshape3<'py>(
     w: u32,
 ) -> PyResult<Bound<'py, PyArray3<f32>>> {
     PyArray1::from_vec(py, v).reshape([h as usize, w as usize, 3])
+}
+
+/// An RGB image of `w` × `h` values (None only if the sizes disagree, which
+/// a film's own arrays never do).
+fn to_image(w: u32, h: u32, v: Vec<Vec3>) -> Option<RgbImage> {
+    RgbImage::from_pixels(
+        w as usize,
+        h as usize,
+        v.into_iter().map(|c| c.to_array()).collect(),
+    )
+    .ok()
 }
 
 impl PyFilm {
@@ -152,15 +164,23 @@ impl PyFilm {
         PyArray1::from_vec(py, v).reshape([h as usize, w as usize])
     }
 
-    /// The raw sums as NumPy arrays: `radiance` (H, W, 3) float64, `lum` and
-    /// `lum_sq` (H, W) float64, `count` (H, W) uint32.
+    /// The raw sums as NumPy arrays: `radiance`, `radiance_sq`, `albedo`,
+    /// `normal` (H, W, 3) float64; `lum` and `lum_sq` (H, W) float64; `count`
+    /// (H, W) uint32. Divide by `count` for means (and, from the squares,
+    /// variances for statistical tests).
     fn arrays<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (w, h) = self.size();
         let (w, h) = (w as usize, h as usize);
         let px = &self.inner.film.pixels;
         let d = PyDict::new(py);
-        let rad: Vec<f64> = px.iter().flat_map(|p| p.radiance.to_array()).collect();
-        d.set_item("radiance", PyArray1::from_vec(py, rad).reshape([h, w, 3])?)?;
+        let rgb = |f: fn(&PixelSums) -> DVec3| -> PyResult<_> {
+            let v: Vec<f64> = px.iter().flat_map(|p| f(p).to_array()).collect();
+            PyArray1::from_vec(py, v).reshape([h, w, 3])
+        };
+        d.set_item("radiance", rgb(|p| p.radiance)?)?;
+        d.set_item("radiance_sq", rgb(|p| p.radiance_sq)?)?;
+        d.set_item("albedo", rgb(|p| p.albedo)?)?;
+        d.set_item("normal", rgb(|p| p.normal)?)?;
         let lum: Vec<f64> = px.iter().map(|p| p.lum).collect();
         d.set_item("lum", PyArray1::from_vec(py, lum).reshape([h, w])?)?;
         let sq: Vec<f64> = px.iter().map(|p| p.lum_sq).collect();
@@ -171,9 +191,10 @@ impl PyFilm {
     }
 
     /// Writes the image: `.png` (tone-mapped 8-bit sRGB, as the CLI) or
-    /// `.exr` (linear float, beauty plus a `samples` layer when `samples`).
-    #[pyo3(signature = (path, *, samples=false))]
-    fn save(&self, py: Python<'_>, path: PathBuf, samples: bool) -> PyResult<()> {
+    /// `.exr` (linear float; plus a `samples` layer when `samples`, and the
+    /// albedo and normal layers denoisers read when `aovs`).
+    #[pyo3(signature = (path, *, samples=false, aovs=false))]
+    fn save(&self, py: Python<'_>, path: PathBuf, samples: bool, aovs: bool) -> PyResult<()> {
         let image = self.rgb_image()?;
         let ext = path
             .extension()
@@ -195,6 +216,10 @@ impl PyFilm {
                 if samples {
                     layers.sample_count =
                         GrayImage::from_values(w as usize, h as usize, counts).ok();
+                }
+                if aovs {
+                    layers.albedo = to_image(w, h, self.inner.film.albedo());
+                    layers.normal = to_image(w, h, self.inner.film.normal());
                 }
                 write_exr(&path, &layers).map_err(|e| {
                     PyOSError::new_err(format!("cannot write {}: {e}", path.display()))

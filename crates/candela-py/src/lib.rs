@@ -5,10 +5,10 @@
 //! which is all `candela.distributed` needs to spread a render over Dask.
 
 mod film;
-mod interim;
 mod scene;
 mod settings;
 mod stats;
+mod unit;
 mod watch;
 mod wire;
 

@@ -1,18 +1,18 @@
 //! `candela.Scene`: a loaded scene description that renders.
 
 use crate::film::PyFilm;
-use crate::interim::{render_unit, UnitError};
 use crate::settings::{split_samples, RenderKwargs, RenderRequest};
-use crate::stats::StatsRecord;
+use crate::unit::render_cell;
 use crate::watch::run_interruptible;
 use crate::wire::PlacedFilm;
-use candela_render::film::Film;
+use candela_render::film::Adaptive;
+use candela_render::render::Cancel;
+use candela_render::render::{RenderError, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::SceneDesc;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -73,37 +73,70 @@ impl PyScene {
 
     fn run(&self, py: Python<'_>, req: &RenderRequest) -> PyResult<PyFilm> {
         let scene = self.built(py, &req.scene)?;
-        let cancel = AtomicBool::new(false);
+        let cancel = Cancel::new();
         let passes = split_samples(&req.samples, req.passes);
-        let full = (req.scene.width, req.scene.height);
-        let rect = req.cell;
-        let result = run_interruptible(py, &cancel, || -> Result<PlacedFilm, UnitError> {
+        let result = run_interruptible(py, &cancel, || {
             let start = Instant::now();
-            let mut film = Film::new(rect.width(), rect.height());
-            let mut stats = StatsRecord::default();
-            for (k, samples) in passes.into_iter().enumerate() {
-                let (part, part_stats) =
-                    render_unit(&scene, &req.settings, rect, samples, &cancel)?;
-                if k == 0 {
-                    film = part;
-                } else {
-                    film.merge(&part);
+            let mut merged: Option<PlacedFilm> = None;
+            for samples in passes {
+                let settings = RenderSettings {
+                    sample_range: Some(samples),
+                    ..req.settings.clone()
+                };
+                let Some(part) = render_cell(&scene, &settings, &cancel)? else {
+                    return Ok(None);
+                };
+                match merged.as_mut() {
+                    None => merged = Some(part),
+                    Some(m) => {
+                        for (a, b) in m.film.pixels.iter_mut().zip(&part.film.pixels) {
+                            a.merge(b);
+                        }
+                        m.stats.add(&part.stats);
+                    }
                 }
-                stats.add(&StatsRecord::from(&part_stats));
             }
-            stats.wall_time_s = start.elapsed().as_secs_f64();
-            Ok(PlacedFilm {
-                film,
-                origin: (rect.x0, rect.y0),
-                full,
-                stats,
-            })
+            if let Some(m) = merged.as_mut() {
+                m.stats.wall_time_s = start.elapsed().as_secs_f64();
+            }
+            Ok(merged)
         })?;
         match result {
-            Ok(inner) => Ok(PyFilm { inner }),
-            Err(e) => Err(PyRuntimeError::new_err(e.to_string())),
+            Ok(Some(inner)) => Ok(PyFilm { inner }),
+            Ok(None) => Err(PyRuntimeError::new_err("render cancelled")),
+            Err(e) => Err(render_error(e)),
         }
     }
+}
+
+fn render_error(e: RenderError) -> PyErr {
+    match e {
+        RenderError::Settings(msg) => PyValueError::new_err(msg),
+        other => PyRuntimeError::new_err(other.to_string()),
+    }
+}
+
+/// `adaptive=`: None or False (off), True (the CS184 setting, batch 64 and
+/// tolerance 0.05), a tolerance, or `(batch, tolerance)`.
+fn adaptive_arg(a: Option<Bound<'_, PyAny>>) -> PyResult<Option<Adaptive>> {
+    let Some(a) = a.filter(|a| !a.is_none()) else {
+        return Ok(None);
+    };
+    if let Ok(on) = a.extract::<bool>() {
+        return Ok(on.then(Adaptive::default));
+    }
+    if let Ok(tolerance) = a.extract::<f64>() {
+        return Ok(Some(Adaptive {
+            tolerance,
+            ..Adaptive::default()
+        }));
+    }
+    if let Ok((batch, tolerance)) = a.extract::<(u32, f64)>() {
+        return Ok(Some(Adaptive { batch, tolerance }));
+    }
+    Err(PyValueError::new_err(
+        "adaptive=: expected None, a bool, a tolerance or (batch, tolerance)",
+    ))
 }
 
 #[pymethods]
@@ -133,12 +166,14 @@ impl PyScene {
     /// Options mirror the CLI: `integrator` is "path", "normals", "direct"
     /// (--direct-only) or "indirect" (--indirect-only); `lighting` is "mis",
     /// "light" (--light-only) or "hemisphere" (-H); `accumulate=False` is
-    /// `-o 0`; `roulette=False` is --no-roulette. `cell=(x0, y0, x1, y1)`
-    /// renders only those pixels (half-open, y = 0 at the top) and returns a
-    /// film of that rectangle; `sample_range=(start, end)` renders only those
+    /// `-o 0`; `roulette=False` is --no-roulette. `cell=(x, y, width,
+    /// height)` renders only those pixels (y = 0 at the top; CS184's `-p`)
+    /// and returns a film of that rectangle; `sample_range=(start, end)` renders only those
     /// sample indices of each pixel (within 0..spp); `passes` cuts the sample
     /// range into that many consecutive parts added in order, as the
-    /// distributed renderer does. The GIL is released; Ctrl-C stops the
+    /// distributed renderer does. `adaptive` stops each pixel once its mean
+    /// is known well enough: True (CS184's `-a 64 0.05`), a tolerance, or
+    /// `(batch, tolerance)`. The GIL is released; Ctrl-C stops the
     /// render and raises KeyboardInterrupt.
     #[pyo3(signature = (
         *, spp=16, max_depth=5, light_samples=1, integrator="path", lighting="mis",
@@ -169,11 +204,6 @@ impl PyScene {
         adaptive: Option<Bound<'_, PyAny>>,
         threads: usize,
     ) -> PyResult<PyFilm> {
-        if adaptive.is_some_and(|a| !a.is_none()) {
-            return Err(PyValueError::new_err(
-                "adaptive sampling is not available yet: it needs candela-render's adaptive settings",
-            ));
-        }
         let req = RenderKwargs {
             spp,
             max_depth,
@@ -192,6 +222,7 @@ impl PyScene {
             sample_range,
             passes,
             threads,
+            adaptive: adaptive_arg(adaptive)?,
         }
         .validate()?;
         self.run(py, &req)

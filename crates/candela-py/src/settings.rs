@@ -2,9 +2,9 @@
 //! library's settings. The integrator options mirror the CLI flags so that a
 //! Python render and a CLI render of the same options are the same image.
 
-use crate::interim::PixelRect;
 use candela_bvh::BuildStrategy;
 use candela_render::camera::framing::CameraMode;
+use candela_render::film::{Adaptive, PixelRect};
 use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
 use candela_render::render::RenderSettings;
 use candela_render::sampling::SamplerKind;
@@ -18,10 +18,9 @@ use std::ops::Range;
 pub struct RenderRequest {
     /// Image size, camera and BVH: what the built scene depends on.
     pub scene: SceneOptions,
-    /// Integrator, sampler, seed, threads (and `spp`, the end of the range).
+    /// Integrator, sampler, seed, threads, cell, adaptive sampling; the
+    /// sample range is set per pass.
     pub settings: RenderSettings,
-    /// Pixels to render.
-    pub cell: PixelRect,
     /// Sample indices to render in each pixel, split into `passes`.
     pub samples: Range<u32>,
     /// Number of consecutive sample ranges, merged in order.
@@ -46,6 +45,7 @@ pub struct RenderKwargs<'a> {
     pub cell: Option<(u32, u32, u32, u32)>,
     pub sample_range: Option<(u32, u32)>,
     pub passes: u32,
+    pub adaptive: Option<Adaptive>,
     pub threads: usize,
 }
 
@@ -78,10 +78,11 @@ impl RenderKwargs<'_> {
         if self.spp == 0 {
             return bad("spp=0: at least one sample per pixel".into());
         }
-        let (x0, y0, x1, y1) = self.cell.unwrap_or((0, 0, self.width, self.height));
-        if x0 >= x1 || y0 >= y1 || x1 > self.width || y1 > self.height {
+        let (x, y, w, h) = self.cell.unwrap_or((0, 0, self.width, self.height));
+        let cell = PixelRect::new(x, y, w, h);
+        if !cell.fits_in(self.width, self.height) {
             return bad(format!(
-                "cell=({x0}, {y0}, {x1}, {y1}): expected x0 < x1 <= width ({}), y0 < y1 <= height ({})",
+                "cell=({x}, {y}, {w}, {h}): expected a non-empty (x, y, width, height) inside the {}x{} image",
                 self.width, self.height
             ));
         }
@@ -134,8 +135,10 @@ impl RenderKwargs<'_> {
                 integrator: self.integrator()?,
                 sampler,
                 threads: self.threads,
+                cell: Some(cell),
+                adaptive: self.adaptive,
+                ..RenderSettings::default()
             },
-            cell: PixelRect { x0, y0, x1, y1 },
             samples: s0..s1,
             passes: self.passes,
         })

@@ -27,6 +27,8 @@ pub struct StatsRecord {
     pub invalid_samples: u64,
     /// Threads of the largest part.
     pub threads: u64,
+    /// Pixels that adaptive sampling stopped early.
+    pub converged_pixels: u64,
     /// Sum of the parts' render-loop times, in seconds.
     pub render_time_s: f64,
     /// Elapsed time of the whole render, in seconds.
@@ -46,6 +48,7 @@ impl From<&RenderStats> for StatsRecord {
             path_segments: s.path_segments,
             invalid_samples: s.invalid_samples,
             threads: s.threads as u64,
+            converged_pixels: s.converged_pixels,
             render_time_s: t,
             wall_time_s: t,
         }
@@ -71,12 +74,13 @@ impl StatsRecord {
         self.path_segments += o.path_segments;
         self.invalid_samples += o.invalid_samples;
         self.threads = self.threads.max(o.threads);
+        self.converged_pixels += o.converged_pixels;
         self.render_time_s += o.render_time_s;
         self.wall_time_s += o.wall_time_s;
     }
 
     /// The counters as fixed-order integers, for serialisation.
-    pub fn counters(&self) -> [u64; 9] {
+    pub fn counters(&self) -> [u64; 10] {
         [
             self.camera_rays,
             self.shadow_rays,
@@ -87,11 +91,12 @@ impl StatsRecord {
             self.path_segments,
             self.invalid_samples,
             self.threads,
+            self.converged_pixels,
         ]
     }
 
     /// Inverse of [`StatsRecord::counters`] plus the two times.
-    pub fn from_parts(c: [u64; 9], render_time_s: f64, wall_time_s: f64) -> Self {
+    pub fn from_parts(c: [u64; 10], render_time_s: f64, wall_time_s: f64) -> Self {
         Self {
             camera_rays: c[0],
             shadow_rays: c[1],
@@ -102,6 +107,7 @@ impl StatsRecord {
             path_segments: c[6],
             invalid_samples: c[7],
             threads: c[8],
+            converged_pixels: c[9],
             render_time_s,
             wall_time_s,
         }
@@ -121,6 +127,7 @@ impl StatsRecord {
         d.set_item("path_segments", self.path_segments)?;
         d.set_item("invalid_samples", self.invalid_samples)?;
         d.set_item("threads", self.threads)?;
+        d.set_item("converged_pixels", self.converged_pixels)?;
         d.set_item("render_time_s", self.render_time_s)?;
         d.set_item("wall_time_s", self.wall_time_s)?;
         d.set_item("mrays_per_s", rays as f64 / wall / 1e6)?;

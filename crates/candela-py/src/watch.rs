@@ -7,9 +7,9 @@
 //! returned once it has. Off the main thread (e.g. in a Dask worker) signal
 //! checks do nothing, so the work simply runs to the end.
 
+use candela_render::render::Cancel;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 /// How often the waiting thread looks for signals.
@@ -19,7 +19,7 @@ const POLL: Duration = Duration::from_millis(20);
 /// raises meanwhile.
 pub fn run_interruptible<T: Send>(
     py: Python<'_>,
-    cancel: &AtomicBool,
+    cancel: &Cancel,
     work: impl FnOnce() -> T + Send,
 ) -> PyResult<T> {
     std::thread::scope(|s| {
@@ -37,7 +37,7 @@ pub fn run_interruptible<T: Send>(
             });
             if interrupted.is_none() {
                 if let Err(e) = py.check_signals() {
-                    cancel.store(true, Ordering::Relaxed);
+                    cancel.cancel();
                     interrupted = Some(e);
                 }
             }

@@ -1,20 +1,21 @@
 //! A film's raw sums as bytes, so Dask (or any pickle user) can move them.
 //!
-//! Layout, little-endian: magic `CNDLFLM1`; u32 width, height, origin x,
-//! origin y, full width, full height; 9 u64 statistics counters; f64 render
-//! and wall time; then per pixel, row-major: radiance r, g, b, luminance sum,
-//! squared-luminance sum (f64 each) and the sample count (u32). 44 bytes per
-//! pixel: a 64×64 cell is 180 KiB. Floats travel as their bits, so a film
-//! survives the trip exactly.
+//! Layout, little-endian: magic `CNDLFLM2`; u32 width, height, origin x,
+//! origin y, full width, full height; 10 u64 statistics counters; f64 render
+//! and wall time; then per pixel, row-major, the sums of `PixelSums` in
+//! declaration order -- radiance (3), radiance squared (3), luminance,
+//! luminance squared, albedo (3), normal (3) as f64 -- and the sample count
+//! as u32. 116 bytes per pixel: a 64×64 cell is 464 KiB. Floats travel as
+//! their bits, so a film survives the trip exactly.
 
 use crate::stats::StatsRecord;
 use candela_render::film::{Film, PixelSums};
 use glam::DVec3;
 
-const MAGIC: &[u8; 8] = b"CNDLFLM1";
-const HEADER: usize = 8 + 6 * 4 + 9 * 8 + 2 * 8;
+const MAGIC: &[u8; 8] = b"CNDLFLM2";
+const HEADER: usize = 8 + 6 * 4 + 10 * 8 + 2 * 8;
 /// Bytes per pixel in the wire format.
-pub const PIXEL_BYTES: usize = 5 * 8 + 4;
+pub const PIXEL_BYTES: usize = 14 * 8 + 4;
 
 /// A film with where it sits in the full image and what it cost.
 #[derive(Clone, Debug, PartialEq)]
@@ -68,7 +69,11 @@ pub fn encode(f: &PlacedFilm) -> Vec<u8> {
     out.extend_from_slice(&f.stats.render_time_s.to_le_bytes());
     out.extend_from_slice(&f.stats.wall_time_s.to_le_bytes());
     for p in &f.film.pixels {
-        for v in [p.radiance.x, p.radiance.y, p.radiance.z, p.lum, p.lum_sq] {
+        let (r, q, a, n) = (p.radiance, p.radiance_sq, p.albedo, p.normal);
+        let sums = [
+            r.x, r.y, r.z, q.x, q.y, q.z, p.lum, p.lum_sq, a.x, a.y, a.z, n.x, n.y, n.z,
+        ];
+        for v in sums {
             out.extend_from_slice(&v.to_le_bytes());
         }
         out.extend_from_slice(&p.count.to_le_bytes());
@@ -124,8 +129,11 @@ pub fn decode(bytes: &[u8]) -> Result<PlacedFilm, WireError> {
     for p in film.pixels.iter_mut() {
         *p = PixelSums {
             radiance: DVec3::new(r.f64(), r.f64(), r.f64()),
+            radiance_sq: DVec3::new(r.f64(), r.f64(), r.f64()),
             lum: r.f64(),
             lum_sq: r.f64(),
+            albedo: DVec3::new(r.f64(), r.f64(), r.f64()),
+            normal: DVec3::new(r.f64(), r.f64(), r.f64()),
             count: r.u32(),
         };
     }

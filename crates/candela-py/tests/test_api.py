@@ -59,14 +59,14 @@ def test_image_is_the_mean_of_the_sums(full):
 
 
 def test_a_cell_is_the_same_pixels_of_the_full_render(scene, full):
-    cell = scene.render(cell=(13, 5, 31, 22), **SMALL)
+    cell = scene.render(cell=(13, 5, 18, 17), **SMALL)
     assert (cell.origin, cell.width, cell.height, cell.full_size) == ((13, 5), 18, 17, (40, 30))
     for k, v in cell.arrays().items():
         assert v.tobytes() == full.arrays()[k][5:22, 13:31].tobytes(), k
 
 
 def test_cells_merge_to_the_full_render(scene, full):
-    cells = [(0, 0, 17, 30), (17, 0, 40, 11), (17, 11, 40, 30)]
+    cells = [(0, 0, 17, 30), (17, 0, 23, 11), (17, 11, 23, 19)]
     parts = [scene.render(cell=c, **SMALL) for c in cells]
     assert bits_equal(candela.merge(parts), full)
     assert candela.merge(parts).stats["samples"] == full.stats["samples"]
@@ -86,7 +86,7 @@ def test_thread_count_does_not_change_the_film(scene, full):
 
 
 def test_bytes_and_pickle_round_trip_exactly(scene):
-    part = scene.render(cell=(3, 4, 20, 9), **SMALL)
+    part = scene.render(cell=(3, 4, 17, 5), **SMALL)
     for back in (candela.Film.from_bytes(part.to_bytes()), pickle.loads(pickle.dumps(part))):
         assert bits_equal(back, part)
         assert back.full_size == part.full_size and back.stats == part.stats
@@ -98,7 +98,7 @@ def test_bytes_and_pickle_round_trip_exactly(scene):
 
 def test_adding_a_film_that_does_not_fit_is_refused(scene):
     part = scene.render(cell=(0, 0, 8, 8), **SMALL)
-    small = scene.render(cell=(8, 8, 16, 16), **SMALL)
+    small = scene.render(cell=(8, 8, 8, 8), **SMALL)
     with pytest.raises(ValueError):
         part.add(small)
     other = scene.render(spp=1, width=20, height=10)
@@ -110,13 +110,15 @@ def test_adding_a_film_that_does_not_fit_is_refused(scene):
     "bad",
     [
         dict(cell=(0, 0, 41, 30)),
-        dict(cell=(5, 5, 5, 9)),
+        dict(cell=(5, 5, 0, 9)),
+        dict(cell=(30, 0, 11, 30)),
         dict(sample_range=(2, 5)),
         dict(sample_range=(3, 3)),
         dict(passes=5),
         dict(integrator="whitted"),
         dict(sampler="halton"),
-        dict(adaptive=0.01),
+        dict(adaptive="yes"),
+        dict(adaptive=(0, 0.05)),
     ],
 )
 def test_impossible_requests_raise_value_error(scene, bad):
@@ -155,3 +157,13 @@ def test_ctrl_c_interrupts_a_render(scene):
     with pytest.raises(KeyboardInterrupt):
         scene.render(spp=4096, width=128, height=96)
     assert time.perf_counter() - start < 5.0
+
+
+def test_adaptive_sampling_stops_converged_pixels_at_batch_boundaries(scene):
+    film = scene.render(spp=256, adaptive=(16, 0.2), width=24, height=18, seed=2)
+    counts = film.sample_counts()
+    assert counts.min() >= 16 and counts.max() <= 256
+    assert ((counts % 16 == 0) | (counts == 256)).all()
+    assert film.stats["converged_pixels"] == int((counts < 256).sum()) > 0
+    again = scene.render(spp=256, adaptive=(16, 0.2), width=24, height=18, seed=2, threads=1)
+    assert bits_equal(again, film)

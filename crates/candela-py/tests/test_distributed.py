@@ -32,9 +32,9 @@ def test_plan_covers_every_pixel_and_sample_once():
     assert len(units) == 36
     hits = {}
     for u in units:
-        x0, y0, x1, y1 = u.cell
-        for y in range(y0, y1):
-            for x in range(x0, x1):
+        x0, y0, w, h = u.cell
+        for y in range(y0, y0 + h):
+            for x in range(x0, x0 + w):
                 for s in range(*u.sample_range):
                     hits[(x, y, s)] = hits.get((x, y, s), 0) + 1
     assert len(hits) == 37 * 29 * 7 and set(hits.values()) == {1}
@@ -51,7 +51,7 @@ def test_distributed_equals_local(threads_client, spheres_path, passes):
 
 def test_a_unit_that_raises_once_is_retried(threads_client, spheres_path, tmp_path):
     marker = tmp_path / "failed"
-    fn = faults.FailOnce(marker, (12, 0, 24, 14), (0, 3), "raise")
+    fn = faults.FailOnce(marker, (12, 0, 12, 14), (0, 3), "raise")
     film = dist.render(spheres_path, threads_client, tiles=(3, 2), passes=2, retries=2, unit_fn=fn, **SETTINGS)
     assert marker.exists(), "the fault was not injected"
     assert bits_equal(film, candela.load(spheres_path).render(passes=2, **SETTINGS))
@@ -65,7 +65,7 @@ def test_without_retries_the_failure_surfaces(threads_client, spheres_path, tmp_
 
 def test_a_worker_killed_mid_render_loses_nothing(spheres_path, tmp_path):
     marker = tmp_path / "killed"
-    fn = faults.FailOnce(marker, (18, 14, 36, 28), (3, 6), "kill")
+    fn = faults.FailOnce(marker, (18, 14, 18, 14), (3, 6), "kill")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as c:
         with distributed.Client(c) as client:
             film = dist.render(spheres_path, client, tiles=(2, 2), passes=2, unit_fn=fn, **SETTINGS)

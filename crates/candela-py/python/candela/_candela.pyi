@@ -22,6 +22,7 @@ class Stats(TypedDict):
     path_segments: int
     invalid_samples: int
     threads: int
+    converged_pixels: int
     render_time_s: float
     wall_time_s: float
     mrays_per_s: float
@@ -34,6 +35,9 @@ class FilmArrays(TypedDict):
     """The raw per-pixel sums of a film."""
 
     radiance: npt.NDArray[np.float64]
+    radiance_sq: npt.NDArray[np.float64]
+    albedo: npt.NDArray[np.float64]
+    normal: npt.NDArray[np.float64]
     lum: npt.NDArray[np.float64]
     lum_sq: npt.NDArray[np.float64]
     count: npt.NDArray[np.uint32]
@@ -67,8 +71,9 @@ class Film:
         """Samples per pixel, shape (H, W)."""
     def arrays(self) -> FilmArrays:
         """The raw sums as NumPy arrays."""
-    def save(self, path: _Path, *, samples: bool = False) -> None:
-        """Writes .png (tone-mapped sRGB) or .exr (linear; plus a samples layer)."""
+    def save(self, path: _Path, *, samples: bool = False, aovs: bool = False) -> None:
+        """Writes .png (tone-mapped sRGB) or .exr (linear; optional samples,
+        albedo and normal layers)."""
     def add(self, other: Film) -> None:
         """Adds a part of the same image lying inside this film, in place."""
     def to_bytes(self) -> bytes:
@@ -103,10 +108,11 @@ class Scene:
         cell: Optional[Tuple[int, int, int, int]] = None,
         sample_range: Optional[Tuple[int, int]] = None,
         passes: int = 1,
-        adaptive: None = None,
+        adaptive: Union[None, bool, float, Tuple[int, float]] = None,
         threads: int = 0,
     ) -> Film:
-        """Renders the scene; Ctrl-C raises KeyboardInterrupt."""
+        """Renders the scene; ``cell=(x, y, width, height)``; Ctrl-C raises
+        KeyboardInterrupt."""
 
 def load(path: _Path, *, strict: bool = False) -> Scene:
     """Loads a COLLADA (.dae) scene."""

@@ -33,8 +33,8 @@ _PLANNED = ("cell", "sample_range", "passes")
 
 @dataclass(frozen=True)
 class WorkUnit:
-    """One task: the pixels ``cell = (x0, y0, x1, y1)`` (half-open) and the
-    sample indices ``sample_range = (start, end)`` of each of them."""
+    """One task: the pixels ``cell = (x, y, width, height)`` and the sample
+    indices ``sample_range = (start, end)`` of each of them."""
 
     cell_index: int
     pass_index: int
@@ -68,7 +68,7 @@ def plan(
     if not 1 <= passes <= spp:
         raise ValueError(f"passes={passes}: expected 1..spp ({spp})")
     cells = [
-        (x0, y0, x1, y1)
+        (x0, y0, x1 - x0, y1 - y0)
         for (y0, y1) in _split(height, ny)
         for (x0, x1) in _split(width, nx)
     ]
