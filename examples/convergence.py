@@ -47,7 +47,8 @@ def main():
     scene = candela.load(a.scene) if a.scene else candela.demo_scene()
     for line in scene.warnings + scene.notes:
         print("note:", line)
-    size = dict(width=WIDTH, height=HEIGHT, max_depth=5)
+    # The demo scene is framed by its own camera (CS184's orbit rule sees a wall).
+    size = dict(width=WIDTH, height=HEIGHT, max_depth=5, camera="cs184" if a.scene else "file")
 
     reference = scene.render(spp=REFERENCE_SPP, seed=1000, **size)
     print(f"reference: {REFERENCE_SPP} spp, {reference.stats['mrays_per_s']:.1f} Mrays/s")
