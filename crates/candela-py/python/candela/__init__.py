@@ -1,0 +1,27 @@
+"""Candela, a physically based path tracer, from Python.
+
+    >>> import candela
+    >>> scene = candela.load("CBspheres_lambertian.dae")
+    >>> film = scene.render(spp=64, width=256, height=192, seed=1)
+    >>> film.image().shape
+    (192, 256, 3)
+    >>> film.save("spheres.exr")
+
+A film keeps per-pixel sums (radiance, luminance, squared luminance, sample
+count), so films of parts of an image -- pixel rectangles, sample ranges,
+machines -- merge by addition: see ``candela.merge`` and
+``candela.distributed`` (rendering on a Dask cluster).
+"""
+
+from candela._candela import (
+    Film,
+    LoadError,
+    Scene,
+    demo_scene,
+    load,
+    merge,
+    read_image,
+)
+
+__all__ = ["Film", "LoadError", "Scene", "demo_scene", "load", "merge", "read_image"]
+__version__ = "0.1.0"

@@ -1,0 +1,127 @@
+"""Type stubs of the native module ``candela._candela``."""
+
+from os import PathLike
+from typing import Literal, Optional, Sequence, Tuple, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+
+_Path = Union[str, PathLike[str]]
+
+class LoadError(ValueError):
+    """A scene file could not be loaded; the message locates the problem."""
+
+class Stats(TypedDict):
+    """Render statistics; counters add up when films merge."""
+
+    rays: int
+    camera_rays: int
+    shadow_rays: int
+    bounce_rays: int
+    samples: int
+    path_segments: int
+    invalid_samples: int
+    threads: int
+    converged_pixels: int
+    render_time_s: float
+    wall_time_s: float
+    mrays_per_s: float
+    samples_per_s: float
+    mean_path_length: float
+    nodes_per_ray: float
+    tests_per_ray: float
+
+class FilmArrays(TypedDict):
+    """The raw per-pixel sums of a film."""
+
+    radiance: npt.NDArray[np.float64]
+    radiance_sq: npt.NDArray[np.float64]
+    albedo: npt.NDArray[np.float64]
+    normal: npt.NDArray[np.float64]
+    lum: npt.NDArray[np.float64]
+    lum_sq: npt.NDArray[np.float64]
+    count: npt.NDArray[np.uint32]
+
+class Film:
+    """Per-pixel sums over a rectangle of an image; merges by addition."""
+
+    @staticmethod
+    def empty(width: int, height: int) -> Film:
+        """A film of zeros covering a whole image, to add parts into."""
+    @staticmethod
+    def from_bytes(data: bytes) -> Film:
+        """A film from ``Film.to_bytes`` output."""
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+    @property
+    def origin(self) -> Tuple[int, int]:
+        """(x, y) of the film's top-left pixel in the full image."""
+    @property
+    def full_size(self) -> Tuple[int, int]:
+        """(width, height) of the full image."""
+    @property
+    def stats(self) -> Stats: ...
+    def set_wall_time(self, seconds: float) -> None:
+        """Records the elapsed time of a render whose parts ran concurrently."""
+    def image(self) -> npt.NDArray[np.float32]:
+        """Mean linear radiance, shape (H, W, 3)."""
+    def sample_counts(self) -> npt.NDArray[np.uint32]:
+        """Samples per pixel, shape (H, W)."""
+    def arrays(self) -> FilmArrays:
+        """The raw sums as NumPy arrays."""
+    def save(self, path: _Path, *, samples: bool = False, aovs: bool = False) -> None:
+        """Writes .png (tone-mapped sRGB) or .exr (linear; optional samples,
+        albedo and normal layers)."""
+    def add(self, other: Film) -> None:
+        """Adds a part of the same image lying inside this film, in place."""
+    def to_bytes(self) -> bytes:
+        """The sums, placement and statistics as bytes (exact)."""
+    def __reduce__(self) -> tuple: ...
+
+class Scene:
+    """A loaded scene and what the loader reported."""
+
+    @property
+    def source(self) -> str: ...
+    @property
+    def warnings(self) -> list[str]: ...
+    @property
+    def notes(self) -> list[str]: ...
+    def render(
+        self,
+        *,
+        spp: int = 16,
+        max_depth: int = 5,
+        light_samples: int = 1,
+        integrator: Literal["path", "normals", "direct", "indirect"] = "path",
+        lighting: Literal["mis", "light", "hemisphere"] = "mis",
+        accumulate: bool = True,
+        roulette: bool = True,
+        sampler: Literal["sobol", "independent"] = "sobol",
+        seed: int = 0,
+        width: int = 800,
+        height: int = 600,
+        camera: Literal["cs184", "file"] = "cs184",
+        bvh: Literal["sah", "median", "none"] = "sah",
+        cell: Optional[Tuple[int, int, int, int]] = None,
+        sample_range: Optional[Tuple[int, int]] = None,
+        passes: int = 1,
+        adaptive: Union[None, bool, float, Tuple[int, float]] = None,
+        threads: int = 0,
+    ) -> Film:
+        """Renders the scene; ``cell=(x, y, width, height)``; Ctrl-C raises
+        KeyboardInterrupt."""
+
+def load(path: _Path, *, strict: bool = False) -> Scene:
+    """Loads a COLLADA (.dae) scene."""
+
+def demo_scene() -> Scene:
+    """The built-in demo scene."""
+
+def merge(films: Sequence[Film]) -> Film:
+    """Adds films of one image, in order, into a film of the whole image."""
+
+def read_image(path: _Path) -> npt.NDArray[np.float32]:
+    """Reads a PNG (as linear RGB) or an EXR, shape (H, W, 3)."""

@@ -1,0 +1,197 @@
+"""Rendering one image on a Dask cluster.
+
+The image is cut into work units, each a pixel rectangle (a *cell*) times a
+range of sample indices (a *pass*) of one seed. Every sample is a pure
+function of (seed, pixel, sample index), so a unit renders the same sums on
+any worker, and a unit that is lost (an exception, a killed worker) is simply
+run again by Dask (``retries``). The parts are added into the film in a fixed
+order -- for each cell, its passes in order -- whatever order they arrive in,
+so the result is bit for bit the film of ``scene.render(passes=passes, ...)``
+on one machine (and of a plain ``scene.render(...)`` when ``passes=1``).
+
+Only the scene path, the settings and the returned sums travel: workers load
+the scene themselves (once per process), so the path must be readable on
+every worker.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+import uuid
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import candela
+
+__all__ = ["WorkUnit", "plan", "render", "render_unit"]
+
+#: Settings that decide which pixels and samples a unit renders; the planner
+#: owns them.
+_PLANNED = ("cell", "sample_range", "passes")
+
+
+@dataclass(frozen=True)
+class WorkUnit:
+    """One task: the pixels ``cell = (x, y, width, height)`` and the sample
+    indices ``sample_range = (start, end)`` of each of them."""
+
+    cell_index: int
+    pass_index: int
+    cell: Tuple[int, int, int, int]
+    sample_range: Tuple[int, int]
+
+
+def _split(n: int, parts: int) -> List[Tuple[int, int]]:
+    """``0..n`` cut into ``parts`` consecutive ranges whose lengths differ by
+    at most one (the same rule as the native ``passes`` split)."""
+    return [(n * k // parts, n * (k + 1) // parts) for k in range(parts)]
+
+
+def plan(
+    width: int,
+    height: int,
+    spp: int,
+    tiles: Union[int, Tuple[int, int]] = 4,
+    passes: int = 1,
+) -> List[WorkUnit]:
+    """The work units of a ``width`` x ``height`` render at ``spp``.
+
+    ``tiles`` is the grid of cells: ``(nx, ny)``, or ``n`` for ``n`` x ``n``;
+    ``passes`` cuts each pixel's ``spp`` samples into that many ranges.
+    Units are listed pass by pass, so early passes of every cell come first
+    and a progressive consumer sees the whole image early.
+    """
+    nx, ny = (tiles, tiles) if isinstance(tiles, int) else tiles
+    if not (1 <= nx <= width and 1 <= ny <= height):
+        raise ValueError(f"tiles={tiles!r}: expected 1..{width} x 1..{height} cells")
+    if not 1 <= passes <= spp:
+        raise ValueError(f"passes={passes}: expected 1..spp ({spp})")
+    cells = [
+        (x0, y0, x1 - x0, y1 - y0)
+        for (y0, y1) in _split(height, ny)
+        for (x0, x1) in _split(width, nx)
+    ]
+    return [
+        WorkUnit(c, p, cell, samples)
+        for p, samples in enumerate(_split(spp, passes))
+        for c, cell in enumerate(cells)
+    ]
+
+
+_scenes: Dict[Tuple[str, bool, int, int], "candela.Scene"] = {}
+
+
+def _scene(path: str, strict: bool) -> "candela.Scene":
+    """The scene at ``path``, loaded once per process (and reloaded if the
+    file changes); the loaded scene also keeps its built BVH between units."""
+    st = os.stat(path)
+    key = (path, strict, st.st_mtime_ns, st.st_size)
+    scene = _scenes.get(key)
+    if scene is None:
+        _scenes.clear()
+        scene = _scenes[key] = candela.load(path, strict=strict)
+    return scene
+
+
+def render_unit(
+    scene_path: str,
+    strict: bool,
+    settings: Dict[str, Any],
+    cell: Tuple[int, int, int, int],
+    sample_range: Tuple[int, int],
+) -> "candela.Film":
+    """Renders one work unit on this process; what a Dask task runs."""
+    return _scene(scene_path, strict).render(cell=cell, sample_range=sample_range, **settings)
+
+
+UnitFn = Callable[[str, bool, Dict[str, Any], Tuple[int, int, int, int], Tuple[int, int]], "candela.Film"]
+
+
+def render(
+    scene_path: Union[str, "os.PathLike[str]"],
+    client: Any,
+    *,
+    tiles: Union[int, Tuple[int, int]] = 4,
+    passes: int = 1,
+    retries: int = 3,
+    strict: bool = False,
+    unit_fn: Optional[UnitFn] = None,
+    on_unit: Optional[Callable[[WorkUnit, "candela.Film"], None]] = None,
+    **settings: Any,
+) -> "candela.Film":
+    """Renders ``scene_path`` on the Dask ``client``'s cluster.
+
+    ``settings`` are those of ``Scene.render`` (``spp``, ``seed``, ``width``,
+    ``height``, ``max_depth``, ...; ``threads`` is per unit and defaults to 1,
+    since Dask already runs one unit per worker thread). Returns the merged
+    film, equal bit for bit to ``candela.load(scene_path).render(passes=passes,
+    **settings)``. ``retries`` is how often Dask reruns a unit that raised;
+    units lost with a dead worker are rerun by the scheduler in any case.
+    ``unit_fn`` replaces ``render_unit`` (for tests that inject faults);
+    ``on_unit(unit, film)`` is called as each part is added (progress).
+    """
+    for name in _PLANNED:
+        if name in settings:
+            raise ValueError(f"{name}= is chosen by the planner (use tiles= and passes=)")
+    settings.setdefault("threads", 1)
+    width = settings.setdefault("width", 800)
+    height = settings.setdefault("height", 600)
+    spp = settings.setdefault("spp", 16)
+    units = plan(width, height, spp, tiles, passes)
+    path = os.path.abspath(os.fspath(scene_path))
+    fn = unit_fn or render_unit
+    run = uuid.uuid4().hex[:12]
+    start = time.perf_counter()
+    futures = [
+        client.submit(
+            fn, path, strict, settings, u.cell, u.sample_range,
+            key=f"candela-unit-{run}-{i}", retries=retries, pure=False,
+        )
+        for i, u in enumerate(units)
+    ]
+    by_key = {f.key: u for f, u in zip(futures, units)}
+    merger = _OrderedMerge(width, height, len(units) // passes, passes)
+    from distributed import as_completed
+
+    try:
+        for future, part in as_completed(futures, with_results=True):
+            unit = by_key[future.key]
+            merger.add(unit, part)
+            if on_unit is not None:
+                on_unit(unit, part)
+    finally:
+        client.cancel([f for f in futures if not f.done()])
+    film = merger.result()
+    film.set_wall_time(time.perf_counter() - start)
+    return film
+
+
+class _OrderedMerge:
+    """Adds parts into one film in a fixed order -- per cell, pass 0, 1, ...
+    -- whatever order they arrive in, so the sums are reproducible to the
+    last bit. A part that arrives early waits in ``pending``."""
+
+    def __init__(self, width: int, height: int, cells: int, passes: int) -> None:
+        self.film = candela.Film.empty(width, height)
+        self.cells = cells
+        self.passes = passes
+        self.next_pass: Dict[int, int] = {}
+        self.pending: Dict[Tuple[int, int], "candela.Film"] = {}
+
+    def add(self, unit: WorkUnit, part: "candela.Film") -> None:
+        key = (unit.cell_index, unit.pass_index)
+        if key in self.pending or unit.pass_index < self.next_pass.get(unit.cell_index, 0):
+            return  # a duplicate result of a rerun unit: already counted
+        self.pending[key] = part
+        nxt = self.next_pass.get(unit.cell_index, 0)
+        while (unit.cell_index, nxt) in self.pending:
+            self.film.add(self.pending.pop((unit.cell_index, nxt)))
+            nxt += 1
+        self.next_pass[unit.cell_index] = nxt
+
+    def result(self) -> "candela.Film":
+        missing = sum(self.passes - self.next_pass.get(c, 0) for c in range(self.cells))
+        if self.pending or missing:
+            raise RuntimeError("distributed render finished with parts missing")
+        return self.film

@@ -1,0 +1,274 @@
+//! `candela.Film`: per-pixel sums as NumPy arrays, files and bytes.
+
+use crate::stats::StatsRecord;
+use crate::wire::{self, PlacedFilm};
+use candela_image::{write_exr, write_png, ExrLayers, GrayImage, RgbImage, ToneMap};
+use candela_render::film::{Film, PixelSums};
+use glam::{DVec3, Vec3};
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
+use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyTuple};
+use std::path::PathBuf;
+
+/// The result of a render: per-pixel sums of radiance, luminance, squared
+/// luminance and sample count, over a rectangle of the image.
+///
+/// Films merge by addition (`candela.merge`, `Film.add`), which is how tiles,
+/// sample passes and machines are combined; the image is resolved only when
+/// asked for.
+#[pyclass(name = "Film", module = "candela._candela")]
+pub struct PyFilm {
+    /// The sums and their placement.
+    pub inner: PlacedFilm,
+}
+
+fn reshape3<'py>(
+    py: Python<'py>,
+    v: Vec<f32>,
+    h: u32,
+    w: u32,
+) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    PyArray1::from_vec(py, v).reshape([h as usize, w as usize, 3])
+}
+
+/// An RGB image of `w` × `h` values (None only if the sizes disagree, which
+/// a film's own arrays never do).
+fn to_image(w: u32, h: u32, v: Vec<Vec3>) -> Option<RgbImage> {
+    RgbImage::from_pixels(
+        w as usize,
+        h as usize,
+        v.into_iter().map(|c| c.to_array()).collect(),
+    )
+    .ok()
+}
+
+impl PyFilm {
+    fn size(&self) -> (u32, u32) {
+        (self.inner.film.width, self.inner.film.height)
+    }
+
+    fn rgb_image(&self) -> PyResult<RgbImage> {
+        let (w, h) = self.size();
+        let pixels = self
+            .inner
+            .film
+            .resolve()
+            .into_iter()
+            .map(|c| c.to_array())
+            .collect();
+        RgbImage::from_pixels(w as usize, h as usize, pixels)
+            .map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    /// A zero film covering the whole `width` × `height` image.
+    pub fn empty_full(width: u32, height: u32) -> Self {
+        Self {
+            inner: PlacedFilm {
+                film: Film::new(width, height),
+                origin: (0, 0),
+                full: (width, height),
+                stats: StatsRecord::default(),
+            },
+        }
+    }
+
+    /// Adds `other`'s sums at its place; it must lie inside this film.
+    pub fn add_placed(&mut self, other: &PlacedFilm) -> PyResult<()> {
+        let (me, it) = (&self.inner, other);
+        let inside = me.full == it.full
+            && it.origin.0 >= me.origin.0
+            && it.origin.1 >= me.origin.1
+            && it.origin.0 + it.film.width <= me.origin.0 + me.film.width
+            && it.origin.1 + it.film.height <= me.origin.1 + me.film.height;
+        if !inside {
+            return Err(PyValueError::new_err(format!(
+                "cannot add a {}x{} film at {:?} of a {:?} image to a {}x{} film at {:?} of a {:?} image",
+                it.film.width, it.film.height, it.origin, it.full,
+                me.film.width, me.film.height, me.origin, me.full
+            )));
+        }
+        let (dx, dy) = (it.origin.0 - me.origin.0, it.origin.1 - me.origin.1);
+        let w = self.inner.film.width as usize;
+        for (i, src) in it.film.pixels.iter().enumerate() {
+            let (x, y) = (i % it.film.width as usize, i / it.film.width as usize);
+            self.inner.film.pixels[(y + dy as usize) * w + x + dx as usize].merge(src);
+        }
+        self.inner.stats.add(&it.stats);
+        Ok(())
+    }
+}
+
+#[pymethods]
+impl PyFilm {
+    /// A film of zeros covering a whole `width` × `height` image, to add
+    /// parts into.
+    #[staticmethod]
+    fn empty(width: u32, height: u32) -> Self {
+        Self::empty_full(width, height)
+    }
+
+    /// Width of the covered rectangle in pixels.
+    #[getter]
+    fn width(&self) -> u32 {
+        self.inner.film.width
+    }
+
+    /// Height of the covered rectangle in pixels.
+    #[getter]
+    fn height(&self) -> u32 {
+        self.inner.film.height
+    }
+
+    /// `(x, y)` of the rectangle's top-left pixel in the full image.
+    #[getter]
+    fn origin(&self) -> (u32, u32) {
+        self.inner.origin
+    }
+
+    /// `(width, height)` of the full image.
+    #[getter]
+    fn full_size(&self) -> (u32, u32) {
+        self.inner.full
+    }
+
+    /// Render statistics: rays by kind, samples, times, Mrays/s, ...
+    #[getter]
+    fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        self.inner.stats.to_dict(py)
+    }
+
+    /// Records the elapsed time of the whole render (for rates of renders
+    /// whose parts ran concurrently).
+    fn set_wall_time(&mut self, seconds: f64) {
+        self.inner.stats.wall_time_s = seconds;
+    }
+
+    /// The image: mean linear radiance per pixel, float32, shape (H, W, 3).
+    fn image<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        let (w, h) = self.size();
+        let v = self
+            .inner
+            .film
+            .resolve()
+            .iter()
+            .flat_map(|c| c.to_array())
+            .collect();
+        reshape3(py, v, h, w)
+    }
+
+    /// Samples taken per pixel, uint32, shape (H, W).
+    fn sample_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u32>>> {
+        let (w, h) = self.size();
+        let v: Vec<u32> = self.inner.film.pixels.iter().map(|p| p.count).collect();
+        PyArray1::from_vec(py, v).reshape([h as usize, w as usize])
+    }
+
+    /// The raw sums as NumPy arrays: `radiance`, `radiance_sq`, `albedo`,
+    /// `normal` (H, W, 3) float64; `lum` and `lum_sq` (H, W) float64; `count`
+    /// (H, W) uint32. Divide by `count` for means (and, from the squares,
+    /// variances for statistical tests).
+    fn arrays<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let (w, h) = self.size();
+        let (w, h) = (w as usize, h as usize);
+        let px = &self.inner.film.pixels;
+        let d = PyDict::new(py);
+        let rgb = |f: fn(&PixelSums) -> DVec3| -> PyResult<_> {
+            let v: Vec<f64> = px.iter().flat_map(|p| f(p).to_array()).collect();
+            PyArray1::from_vec(py, v).reshape([h, w, 3])
+        };
+        d.set_item("radiance", rgb(|p| p.radiance)?)?;
+        d.set_item("radiance_sq", rgb(|p| p.radiance_sq)?)?;
+        d.set_item("albedo", rgb(|p| p.albedo)?)?;
+        d.set_item("normal", rgb(|p| p.normal)?)?;
+        let lum: Vec<f64> = px.iter().map(|p| p.lum).collect();
+        d.set_item("lum", PyArray1::from_vec(py, lum).reshape([h, w])?)?;
+        let sq: Vec<f64> = px.iter().map(|p| p.lum_sq).collect();
+        d.set_item("lum_sq", PyArray1::from_vec(py, sq).reshape([h, w])?)?;
+        let n: Vec<u32> = px.iter().map(|p| p.count).collect();
+        d.set_item("count", PyArray1::from_vec(py, n).reshape([h, w])?)?;
+        Ok(d)
+    }
+
+    /// Writes the image: `.png` (tone-mapped 8-bit sRGB, as the CLI) or
+    /// `.exr` (linear float; plus a `samples` layer when `samples`, and the
+    /// albedo and normal layers denoisers read when `aovs`).
+    #[pyo3(signature = (path, *, samples=false, aovs=false))]
+    fn save(&self, py: Python<'_>, path: PathBuf, samples: bool, aovs: bool) -> PyResult<()> {
+        let image = self.rgb_image()?;
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let (w, h) = self.size();
+        let counts: Vec<f32> = self
+            .inner
+            .film
+            .pixels
+            .iter()
+            .map(|p| p.count as f32)
+            .collect();
+        py.detach(|| match ext.as_deref() {
+            Some("png") => write_png(&path, &image, &ToneMap::default())
+                .map_err(|e| PyOSError::new_err(format!("cannot write {}: {e}", path.display()))),
+            Some("exr") => {
+                let mut layers = ExrLayers::beauty(image);
+                if samples {
+                    layers.sample_count =
+                        GrayImage::from_values(w as usize, h as usize, counts).ok();
+                }
+                if aovs {
+                    layers.albedo = to_image(w, h, self.inner.film.albedo());
+                    layers.normal = to_image(w, h, self.inner.film.normal());
+                }
+                write_exr(&path, &layers).map_err(|e| {
+                    PyOSError::new_err(format!("cannot write {}: {e}", path.display()))
+                })
+            }
+            _ => Err(PyValueError::new_err(format!(
+                "{}: the file name must end in .png or .exr",
+                path.display()
+            ))),
+        })
+    }
+
+    /// Adds `other`'s sums (a part of the same image lying inside this film)
+    /// in place. Addition order matters in the last bit: add parts in a fixed
+    /// order for reproducible sums.
+    fn add(&mut self, other: PyRef<'_, PyFilm>) -> PyResult<()> {
+        let other = other.inner.clone();
+        self.add_placed(&other)
+    }
+
+    /// The raw sums, placement and statistics as bytes (exact: floats travel
+    /// as their bits). Inverse of `Film.from_bytes`.
+    fn to_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        PyBytes::new(py, &wire::encode(&self.inner))
+    }
+
+    /// A film from `Film.to_bytes` output.
+    #[staticmethod]
+    fn from_bytes(data: &[u8]) -> PyResult<Self> {
+        wire::decode(data)
+            .map(|inner| Self { inner })
+            .map_err(|e| PyValueError::new_err(e.to_string()))
+    }
+
+    /// Pickle support (how Dask moves films between processes).
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let py = slf.py();
+        let ctor = py.get_type::<PyFilm>().getattr("from_bytes")?;
+        let bytes = slf.borrow().to_bytes(py);
+        Ok((ctor, PyTuple::new(py, [bytes])?))
+    }
+
+    fn __repr__(&self) -> String {
+        let p = &self.inner;
+        format!(
+            "<candela.Film {}x{} at {:?} of {}x{}, {} samples>",
+            p.film.width, p.film.height, p.origin, p.full.0, p.full.1, p.stats.samples
+        )
+    }
+}
