@@ -49,24 +49,26 @@ fn hit_point(light: &AreaLight, p: Vec3, wi: Vec3) -> Option<Vec3> {
 fn check_area_light(name: &str, light: AreaLight, points: &[Vec3]) {
     let wrapped = Light::Area(light.clone());
     for &p in points {
-        let outcome = Chi2Test::sphere(&format!("{name} from {p:?}")).run(
-            |u| {
-                let s = wrapped.sample_li(p, Vec2::new(u[1], u[2]))?;
-                // The sampled distance must land on the light.
-                let q = hit_point(&light, p, s.wi)?;
-                let d = (q - p).length();
-                assert!(
-                    (d - s.distance).abs() <= 1e-3 * d.max(1.0),
-                    "{name}: distance {} vs {d}",
-                    s.distance
-                );
-                Some((s.wi, s.pdf))
-            },
-            |wi| match hit_point(&light, p, wi) {
-                Some(q) => wrapped.pdf_li(p, wi, q),
-                None => 0.0,
-            },
-        );
+        let outcome = Chi2Test::sphere(&format!("{name} from {p:?}"))
+            .with_quadrature_panels(16)
+            .run(
+                |u| {
+                    let s = wrapped.sample_li(p, Vec2::new(u[1], u[2]))?;
+                    // The sampled distance must land on the light.
+                    let q = hit_point(&light, p, s.wi)?;
+                    let d = (q - p).length();
+                    assert!(
+                        (d - s.distance).abs() <= 1e-3 * d.max(1.0),
+                        "{name}: distance {} vs {d}",
+                        s.distance
+                    );
+                    Some((s.wi, s.pdf))
+                },
+                |wi| match hit_point(&light, p, wi) {
+                    Some(q) => wrapped.pdf_li(p, wi, q),
+                    None => 0.0,
+                },
+            );
         outcome.assert_ok();
     }
 }

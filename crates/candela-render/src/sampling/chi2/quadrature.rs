@@ -6,21 +6,39 @@ const MAX_DEPTH: u32 = 10;
 /// far better than their Poisson noise at a million samples.
 const REL_TOL: f64 = 1e-6;
 /// Initial panels per axis, so that lobes narrower than a cell are seen.
-const PANELS: usize = 16;
+/// Densities with hard edges (lights) ask for more with
+/// [`integrate_2d_panels`]: a panel whose five probes all miss a sliver of
+/// the pdf reports zero for it.
+const PANELS: usize = 4;
 
 /// ∫∫ f(s, t) over `[s0, s1] × [t0, t1]`, integrating t inside s.
 pub(crate) fn integrate_2d(f: impl Fn(f64, f64) -> f64, s: (f64, f64), t: (f64, f64)) -> f64 {
-    integrate_1d(
-        &|s_val| integrate_1d(&|t_val| f(s_val, t_val), t.0, t.1),
+    integrate_2d_panels(f, s, t, PANELS)
+}
+
+/// [`integrate_2d`] starting from `panels` panels per axis.
+pub(crate) fn integrate_2d_panels(
+    f: impl Fn(f64, f64) -> f64,
+    s: (f64, f64),
+    t: (f64, f64),
+    panels: usize,
+) -> f64 {
+    integrate_panels(
+        &|s_val| integrate_panels(&|t_val| f(s_val, t_val), t.0, t.1, panels),
         s.0,
         s.1,
+        panels,
     )
 }
 
 /// ∫ f over [a, b]: fixed panels, each refined adaptively.
 pub(crate) fn integrate_1d(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> f64 {
-    let h = (b - a) / PANELS as f64;
-    (0..PANELS)
+    integrate_panels(f, a, b, PANELS)
+}
+
+fn integrate_panels(f: &dyn Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {
+    let h = (b - a) / panels as f64;
+    (0..panels)
         .map(|i| {
             let (x0, x1) = (a + i as f64 * h, a + (i + 1) as f64 * h);
             let (f0, fm, f1) = (f(x0), f((x0 + x1) / 2.0), f(x1));
