@@ -18,3 +18,4 @@ pub mod sampling;
 pub mod scene;
 pub mod shape;
 pub mod stats;
+pub mod texture;

@@ -1,10 +1,13 @@
 //! Materials as the renderer uses them: a BSDF (or none, for pure
-//! emitters), an optional emitted radiance.
+//! emitters), an optional emitted radiance, and an optional image texture
+//! for the diffuse colour, looked up at each hit's `uv`.
 
 use crate::bsdf::Bsdf;
 use crate::scene::SurfaceHit;
+use crate::texture::{ImageTexture, TextureCache};
 use candela_scene::{BsdfDesc, MaterialDesc};
 use glam::Vec3;
+use std::sync::Arc;
 
 /// A material ready for shading.
 #[derive(Clone, Debug, PartialEq)]
@@ -13,6 +16,9 @@ pub struct Material {
     pub bsdf: Option<Bsdf>,
     /// Radiance emitted on the side of the surface normal.
     pub emission: Option<Vec3>,
+    /// Diffuse colour by texture (replacing a diffuse BSDF's flat albedo),
+    /// shared by every material that names the same file.
+    pub diffuse_texture: Option<Arc<ImageTexture>>,
 }
 
 /// The subset of a description this renderer cannot honour yet, by name.
@@ -20,9 +26,14 @@ pub struct Material {
 pub struct Unsupported(pub String);
 
 impl Material {
-    /// Converts a material description. Parameters the renderer cannot use
-    /// are returned by name so the caller can report them once.
-    pub fn from_desc(desc: &MaterialDesc) -> (Material, Vec<Unsupported>) {
+    /// Converts a material description, reading its texture through
+    /// `textures` (a texture that cannot be read leaves the flat colour and
+    /// a message in the cache). Parameters the renderer cannot use are
+    /// returned by name so the caller can report them once.
+    pub fn from_desc(
+        desc: &MaterialDesc,
+        textures: &mut TextureCache,
+    ) -> (Material, Vec<Unsupported>) {
         let mut unsupported = Vec::new();
         let bsdf = match desc.bsdf {
             BsdfDesc::Diffuse { albedo } => Some(Bsdf::Diffuse {
@@ -63,18 +74,37 @@ impl Material {
             BsdfDesc::Microfacet { alpha, eta, k } => Some(Bsdf::Microfacet { alpha, eta, k }),
             BsdfDesc::Black => None,
         };
-        if desc.diffuse_texture.is_some() {
-            unsupported.push(Unsupported(format!(
-                "material '{}': diffuse texture (using the flat colour)",
-                desc.name
-            )));
-        }
+        let diffuse_texture = match (&desc.diffuse_texture, &bsdf) {
+            (None, _) => None,
+            (Some(t), Some(Bsdf::Diffuse { .. })) => textures.get(&t.path),
+            (Some(_), _) => {
+                unsupported.push(Unsupported(format!(
+                    "material '{}': diffuse texture on a non-diffuse BSDF (ignored)",
+                    desc.name
+                )));
+                None
+            }
+        };
         let emission = desc.emission.filter(|e| e.max_element() > 0.0);
-        (Material { bsdf, emission }, unsupported)
+        (
+            Material {
+                bsdf,
+                emission,
+                diffuse_texture,
+            },
+            unsupported,
+        )
     }
 
-    /// The BSDF at a hit point (where textures will be looked up).
-    pub fn bsdf_at(&self, _hit: &SurfaceHit) -> Option<Bsdf> {
-        self.bsdf
+    /// The BSDF at a hit point: a textured diffuse material takes its
+    /// albedo from the texture at the hit's `uv` (clamped to [0, 1] so it
+    /// never creates energy).
+    pub fn bsdf_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
+        match (&self.bsdf, &self.diffuse_texture) {
+            (Some(Bsdf::Diffuse { .. }), Some(texture)) => Some(Bsdf::Diffuse {
+                albedo: texture.lookup(hit.uv).clamp(Vec3::ZERO, Vec3::ONE),
+            }),
+            _ => self.bsdf,
+        }
     }
 }

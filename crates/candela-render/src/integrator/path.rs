@@ -193,7 +193,11 @@ fn emitter_weight(
     }
 }
 
-/// Radiance of lights at infinity seen along an escaping ray.
+/// Radiance of the lights at infinity (ambient sky, environment map) seen
+/// along an escaping ray, each weighted for MIS like emission found by
+/// the path: full weight when only this path could find it (camera rays,
+/// specular bounces, hemisphere mode), none in light-only mode (light
+/// sampling counted it), the power heuristic under MIS.
 fn escaped_radiance(
     scene: &Scene,
     ray: &Ray,
@@ -203,10 +207,7 @@ fn escaped_radiance(
     let mut l = Vec3::ZERO;
     for index in scene.lights.infinite_lights() {
         let light = scene.lights.get(index);
-        let crate::light::Light::Ambient(sky) = light else {
-            continue;
-        };
-        let le = sky.le(ray.dir);
+        let le = light.le(ray.dir);
         if le == Vec3::ZERO {
             continue;
         }

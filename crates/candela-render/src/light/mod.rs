@@ -13,18 +13,28 @@
 //! sampled by area and converted to solid angle (`pdf_A · d² / |cos θ_l|`),
 //! except spheres seen from outside, sampled uniformly in the cone they
 //! subtend. Emitters are one-sided: they emit on the side of their normal.
+//!
+//! Lights at infinity that rays can escape to (the ambient sky, the
+//! environment map) also answer [`Light::le`], the radiance an escaping ray
+//! sees, so the path tracer handles all of them in one place.
 
 mod area;
 mod delta;
+mod envmap;
+#[cfg(test)]
+mod envmap_tests;
 mod infinite;
 mod set;
+mod sky;
 #[cfg(test)]
 mod tests;
 
 pub use area::{AreaLight, AreaShape};
 pub use delta::{DirectionalLight, PointLight, SpotLight};
+pub use envmap::{EnvironmentLight, EnvironmentMap, EnvironmentOptions};
 pub use infinite::AmbientLight;
 pub use set::LightSet;
+pub use sky::ProceduralSky;
 
 use glam::{Vec2, Vec3};
 
@@ -56,6 +66,8 @@ pub enum Light {
     Area(AreaLight),
     /// Uniform radiance from the upper hemisphere.
     Ambient(AmbientLight),
+    /// Radiance from every direction, given by an equirectangular map.
+    Environment(EnvironmentLight),
 }
 
 impl Light {
@@ -70,7 +82,22 @@ impl Light {
 
     /// Whether the light sits at infinity (hit by rays that escape the scene).
     pub fn is_infinite(&self) -> bool {
-        matches!(self, Light::Directional(_) | Light::Ambient(_))
+        matches!(
+            self,
+            Light::Directional(_) | Light::Ambient(_) | Light::Environment(_)
+        )
+    }
+
+    /// Radiance seen by a ray that escapes the scene in direction `dir`:
+    /// the sky of the lights at infinity that rays can hit, zero for every
+    /// other light (delta lights are never hit; emitting surfaces are found
+    /// by intersection instead).
+    pub fn le(&self, dir: Vec3) -> Vec3 {
+        match self {
+            Light::Ambient(l) => l.le(dir),
+            Light::Environment(l) => l.le(dir),
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Area(_) => Vec3::ZERO,
+        }
     }
 
     /// Whether rays can hit the light (emissive geometry, lights at
@@ -79,7 +106,7 @@ impl Light {
     pub fn is_hittable(&self) -> bool {
         match self {
             Light::Area(l) => !matches!(l.shape, AreaShape::Rect { .. }),
-            Light::Ambient(_) => true,
+            Light::Ambient(_) | Light::Environment(_) => true,
             Light::Point(_) | Light::Spot(_) | Light::Directional(_) => false,
         }
     }
@@ -92,6 +119,7 @@ impl Light {
             Light::Directional(l) => Some(l.sample_li()),
             Light::Area(l) => l.sample_li(p, u),
             Light::Ambient(l) => l.sample_li(u),
+            Light::Environment(l) => l.sample_li(u),
         }
     }
 
@@ -102,6 +130,7 @@ impl Light {
         match self {
             Light::Area(l) => l.pdf_li(p, wi, p_light),
             Light::Ambient(l) => l.pdf_li(wi),
+            Light::Environment(l) => l.pdf_li(wi),
             Light::Point(_) | Light::Spot(_) | Light::Directional(_) => 0.0,
         }
     }
@@ -115,6 +144,7 @@ impl Light {
             Light::Directional(l) => l.power(scene_radius),
             Light::Area(l) => l.power(),
             Light::Ambient(l) => l.power(scene_radius),
+            Light::Environment(l) => l.power(scene_radius),
         }
     }
 }

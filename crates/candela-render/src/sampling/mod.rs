@@ -8,6 +8,7 @@
 //! the density it produces and, where one exists, its inverse.
 
 mod hash;
+pub mod piecewise;
 mod sampler;
 mod sobol;
 pub mod warp;

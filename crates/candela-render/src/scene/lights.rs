@@ -3,18 +3,22 @@
 
 use super::{Material, SphereData, TriangleData};
 use crate::light::{
-    AmbientLight, AreaLight, AreaShape, DirectionalLight, Light, LightSet, PointLight, SpotLight,
+    AmbientLight, AreaLight, AreaShape, DirectionalLight, EnvironmentLight, EnvironmentMap, Light,
+    LightSet, PointLight, SpotLight,
 };
 use crate::sampling::warp::Parallelogram;
 use candela_scene::{LightKind, SceneDesc};
 use glam::Vec3;
+use std::sync::Arc;
 
-/// Builds the light set. Primitive ids are triangles first, then spheres.
+/// Builds the light set, with `environment` (if any) as one more light at
+/// infinity. Primitive ids are triangles first, then spheres.
 pub fn build_lights(
     desc: &SceneDesc,
     tris: &TriangleData,
     spheres: &[SphereData],
     materials: &[Material],
+    environment: Option<&Arc<EnvironmentMap>>,
     scene_radius: f32,
 ) -> LightSet {
     let mut lights = Vec::new();
@@ -94,6 +98,9 @@ pub fn build_lights(
                 radiance,
             }),
         });
+    }
+    if let Some(map) = environment {
+        lights.push(Light::Environment(EnvironmentLight { map: map.clone() }));
     }
     LightSet::new(lights, prim_light, scene_radius)
 }

@@ -13,15 +13,17 @@ use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
 use crate::camera::Camera;
 use crate::geometry::Ray;
-use crate::light::LightSet;
+use crate::light::{EnvironmentMap, LightSet};
 pub use crate::material::Material;
+use crate::texture::TextureCache;
 use candela_bvh::BuildStrategy;
 use candela_bvh::TraversalStats;
 use candela_scene::SceneDesc;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// How to build a scene for rendering.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct SceneOptions {
     /// Image width in pixels.
     pub width: u32,
@@ -31,6 +33,16 @@ pub struct SceneOptions {
     pub camera_mode: CameraMode,
     /// BVH construction strategy.
     pub bvh: BuildStrategy,
+    /// Thin-lens aperture radius in world units (CS184 `-b`); 0 is a
+    /// pinhole. Applied after framing, so it works with either camera mode.
+    pub lens_radius: f32,
+    /// Distance from the eye to the plane in focus, along the view
+    /// direction (CS184 `-d`); `None` keeps the framing's (the distance to
+    /// the camera's target).
+    pub focal_distance: Option<f32>,
+    /// An environment map lighting the scene from infinity, in addition to
+    /// the file's own lights (CS184 `-e`).
+    pub environment: Option<Arc<EnvironmentMap>>,
 }
 
 impl Default for SceneOptions {
@@ -40,6 +52,9 @@ impl Default for SceneOptions {
             height: 600,
             camera_mode: CameraMode::Cs184,
             bvh: BuildStrategy::Sah,
+            lens_radius: 0.0,
+            focal_distance: None,
+            environment: None,
         }
     }
 }
@@ -53,6 +68,9 @@ pub enum SceneError {
     /// The geometry is inconsistent.
     #[error("geometry: {0}")]
     Geometry(#[from] AccelError),
+    /// A lens setting is negative or not finite.
+    #[error("lens: {0}")]
+    Lens(String),
 }
 
 /// An immutable scene, shared by all render threads.
@@ -70,6 +88,9 @@ pub struct Scene {
     /// Things the description asks for that this renderer does not do,
     /// each named once.
     pub unsupported: Vec<String>,
+    /// Problems met while building (e.g. a texture file that cannot be
+    /// read and was replaced by the flat colour), each named once.
+    pub warnings: Vec<String>,
     accel: Accel,
     /// Time spent building the acceleration structure.
     pub build_time: Duration,
@@ -78,7 +99,8 @@ pub struct Scene {
 impl Scene {
     /// Builds the render-ready scene from a description.
     pub fn build(desc: &SceneDesc, opts: &SceneOptions) -> Result<Scene, SceneError> {
-        let camera = frame_scene(desc, opts.camera_mode, opts.width, opts.height)?;
+        let mut camera = frame_scene(desc, opts.camera_mode, opts.width, opts.height)?;
+        apply_lens(&mut camera, opts)?;
         let triangles = TriangleData::from_desc(desc);
         let spheres: Vec<SphereData> = desc
             .spheres
@@ -90,11 +112,12 @@ impl Scene {
             })
             .collect();
         let mut unsupported: Vec<String> = Vec::new();
+        let mut textures = TextureCache::new();
         let mut materials: Vec<Material> = desc
             .materials
             .iter()
             .map(|m| {
-                let (material, missing) = Material::from_desc(m);
+                let (material, missing) = Material::from_desc(m, &mut textures);
                 for u in missing {
                     if !unsupported.contains(&u.0) {
                         unsupported.push(u.0);
@@ -104,13 +127,22 @@ impl Scene {
             })
             .collect();
         if materials.is_empty() {
-            materials.push(Material::from_desc(&candela_scene::MaterialDesc::default_grey()).0);
+            let grey = candela_scene::MaterialDesc::default_grey();
+            materials.push(Material::from_desc(&grey, &mut textures).0);
         }
+        let warnings = textures.into_problems();
         let (lo, hi) = desc
             .bounds()
             .unwrap_or((glam::Vec3::ZERO, glam::Vec3::ZERO));
         let scene_radius = 0.5 * (hi - lo).length();
-        let lights = lights::build_lights(desc, &triangles, &spheres, &materials, scene_radius);
+        let lights = lights::build_lights(
+            desc,
+            &triangles,
+            &spheres,
+            &materials,
+            opts.environment.as_ref(),
+            scene_radius,
+        );
         let start = Instant::now();
         let sphere_shapes: Vec<_> = spheres.iter().map(|s| (s.center, s.radius)).collect();
         let accel = Accel::build_indexed(
@@ -127,6 +159,7 @@ impl Scene {
             materials,
             lights,
             unsupported,
+            warnings,
             accel,
             build_time,
         })
@@ -162,4 +195,24 @@ impl Scene {
     pub fn occluded(&self, ray: &Ray, stats: &mut TraversalStats) -> bool {
         self.accel.occluded_counted(ray, stats)
     }
+}
+
+/// Sets the thin lens of `opts` on the framed camera.
+fn apply_lens(camera: &mut Camera, opts: &SceneOptions) -> Result<(), SceneError> {
+    if !(opts.lens_radius.is_finite() && opts.lens_radius >= 0.0) {
+        return Err(SceneError::Lens(format!(
+            "aperture radius {} must be finite and not negative",
+            opts.lens_radius
+        )));
+    }
+    camera.lens_radius = opts.lens_radius;
+    if let Some(d) = opts.focal_distance {
+        if !(d.is_finite() && d > 0.0) {
+            return Err(SceneError::Lens(format!(
+                "focal distance {d} must be finite and positive"
+            )));
+        }
+        camera.focal_distance = d;
+    }
+    Ok(())
 }
