@@ -61,6 +61,29 @@ pub struct RenderArgs {
     #[arg(long = "time", value_name = "SECONDS")]
     pub time: Option<f64>,
 
+    /// Environment map: an equirectangular HDR image (.exr, or .png), +Y up,
+    /// lighting the scene from infinitely far away; `sky` is a built-in
+    /// procedural sky with a sun.
+    #[arg(short = 'e', long = "env", value_name = "MAP")]
+    pub env_map: Option<PathBuf>,
+
+    /// Multiplies the environment map's radiance.
+    #[arg(long = "env-scale", value_name = "S", default_value_t = 1.0)]
+    pub env_scale: f32,
+
+    /// Turns the environment map about the vertical axis, in degrees.
+    #[arg(long = "env-rotate", value_name = "DEG", default_value_t = 0.0)]
+    pub env_rotate: f32,
+
+    /// Thin-lens aperture radius in scene units (depth of field; 0 is a pinhole).
+    #[arg(short = 'b', long = "aperture", value_name = "RADIUS")]
+    pub aperture: Option<f32>,
+
+    /// Distance from the lens to the plane in focus (default: the framing's
+    /// distance to the scene centre).
+    #[arg(short = 'd', long = "focal-distance", value_name = "DIST")]
+    pub focal_distance: Option<f32>,
+
     /// Tile edge in pixels (changes only speed, never the image).
     #[arg(long, value_name = "N", default_value_t = 16, hide = true,
           value_parser = clap::value_parser!(u32).range(1..))]

@@ -13,12 +13,14 @@ use candela_image::{ToneCurve, ToneMap};
 use candela_render::camera::framing::CameraMode;
 use candela_render::film::{Adaptive, PixelRect};
 use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
+use candela_render::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
 use candela_render::render::{
     render_with, Cancel, Progress, RenderControl, RenderSettings, StopReason,
 };
 use candela_render::sampling::SamplerKind;
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{LoadOptions, Loaded};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Exit code of a render stopped by Ctrl-C (128 + SIGINT, as shells do).
@@ -117,6 +119,9 @@ pub fn run(args: &RenderArgs) -> Result<Outcome> {
     })
 }
 
+/// `-e sky` names the built-in procedural sky (a gradient and a sun).
+const BUILT_IN_SKY: &str = "sky";
+
 /// Loads the scene (or the demo), prints its warnings, and builds it.
 fn load_scene(args: &RenderArgs, width: u32, height: u32) -> Result<(Scene, Duration)> {
     let load_start = Instant::now();
@@ -143,9 +148,29 @@ fn load_scene(args: &RenderArgs, width: u32, height: u32) -> Result<(Scene, Dura
             eprintln!("candela: note: {}:{note}", desc.source.display());
         }
     }
+    let environment = match &args.env_map {
+        Some(path) => {
+            let options = EnvironmentOptions {
+                scale: args.env_scale,
+                rotate_y_deg: args.env_rotate,
+            };
+            let map = if path.as_os_str() == BUILT_IN_SKY && !path.exists() {
+                let image = ProceduralSky::default().image(512, 256)?;
+                EnvironmentMap::from_image(&image, &options)?
+            } else {
+                EnvironmentMap::load(path, &options)
+                    .with_context(|| format!("cannot read environment map {}", path.display()))?
+            };
+            Some(Arc::new(map))
+        }
+        None => None,
+    };
     let opts = SceneOptions {
         width,
         height,
+        lens_radius: args.aperture.unwrap_or(0.0),
+        focal_distance: args.focal_distance,
+        environment,
         camera_mode: match args.camera {
             CameraArg::Cs184 => CameraMode::Cs184,
             CameraArg::File => CameraMode::File,
@@ -159,6 +184,9 @@ fn load_scene(args: &RenderArgs, width: u32, height: u32) -> Result<(Scene, Dura
     let scene = Scene::build(&desc, &opts)
         .with_context(|| format!("cannot render {}", desc.source.display()))?;
     if !args.quiet {
+        for warning in &scene.warnings {
+            eprintln!("candela: warning: {}: {warning}", desc.source.display());
+        }
         for what in &scene.unsupported {
             eprintln!(
                 "candela: warning: {}: not supported yet: {what}",
