@@ -6,19 +6,13 @@
 
 mod common;
 
-use candela_image::metrics::ztest::{z_test, BlockStats};
-use candela_image::RgbImage;
 use candela_render::camera::framing::CameraMode;
-use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
 use candela_render::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
-use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{BsdfDesc, MeshDesc, SceneDesc, SourceLoc, SphereDesc};
+use common::agreement::{assert_estimators_agree, Agreement};
 use glam::{Mat4, Vec3};
 use std::sync::Arc;
-
-const BATCHES: u64 = 16;
-const FALSE_ALARM: f64 = 1e-3;
 
 /// A unit sphere resting on a 20 × 20 plane at y = 0, seen from the front
 /// and a little above.
@@ -84,29 +78,6 @@ fn sky() -> Arc<EnvironmentMap> {
     Arc::new(EnvironmentMap::from_image(&image, &EnvironmentOptions::default()).expect("map"))
 }
 
-fn batches(scene: &Scene, lighting: LightingMode, spp: u32) -> Vec<RgbImage> {
-    (0..BATCHES)
-        .map(|seed| {
-            let settings = RenderSettings {
-                spp,
-                seed: 7000 + 100 * seed + lighting as u64,
-                integrator: IntegratorKind::Path(PathSettings {
-                    bounces: 0..=2,
-                    lighting,
-                    light_samples: 1,
-                    roulette_from: None,
-                }),
-                ..Default::default()
-            };
-            let out = render(scene, &settings, &|_| {}).expect("render");
-            assert_eq!(out.stats.invalid_samples, 0, "NaN or infinite samples");
-            let pixels = out.film.resolve().iter().map(|c| c.to_array()).collect();
-            RgbImage::from_pixels(out.film.width as usize, out.film.height as usize, pixels)
-                .expect("image")
-        })
-        .collect()
-}
-
 #[test]
 fn environment_lighting_estimators_agree() {
     let opts = SceneOptions {
@@ -118,25 +89,14 @@ fn environment_lighting_estimators_agree() {
     };
     let scene = Scene::build(&sphere_on_plane(), &opts).expect("scene builds");
     assert_eq!(scene.lights.lights().len(), 1, "the sky is the only light");
-    let modes = [
-        LightingMode::Hemisphere,
-        LightingMode::Light,
-        LightingMode::Mis,
-    ];
-    let spp = [48, 8, 8];
-    let stats: Vec<BlockStats> = modes
-        .iter()
-        .zip(spp)
-        .map(|(&mode, spp)| BlockStats::from_batches(&batches(&scene, mode, spp), 8).unwrap())
-        .collect();
-    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-        let summary = z_test(&stats[i], &stats[j], FALSE_ALARM).unwrap().summary();
-        eprintln!("environment: {:?} vs {:?}: {summary:?}", modes[i], modes[j]);
-        assert!(
-            summary.passed(),
-            "{:?} and {:?} disagree: {summary:?}",
-            modes[i],
-            modes[j]
-        );
-    }
+    assert_estimators_agree(
+        &scene,
+        &Agreement {
+            label: "environment",
+            max_bounces: 2,
+            spp: [48, 8, 8],
+            roulette_from: None,
+            seed_base: 7000,
+        },
+    );
 }

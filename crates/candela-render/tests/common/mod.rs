@@ -2,6 +2,8 @@
 //! them and returns the image mean with its standard error.
 #![allow(dead_code)]
 
+pub mod agreement;
+
 use candela_render::camera::framing::CameraMode;
 use candela_render::integrator::IntegratorKind;
 use candela_render::render::{render, RenderSettings};
