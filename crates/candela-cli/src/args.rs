@@ -84,6 +84,19 @@ pub struct RenderArgs {
     #[arg(short = 'd', long = "focal-distance", value_name = "DIST")]
     pub focal_distance: Option<f32>,
 
+    /// Render on a Dask cluster (`tcp://host:8786`, or `local:N` for N local
+    /// worker processes) through the Python package `candela`.
+    #[arg(long, value_name = "ADDRESS")]
+    pub dask: Option<String>,
+
+    /// With --dask: the image is cut into NX × NY cells.
+    #[arg(long, num_args = 2, value_names = ["NX", "NY"], default_values_t = [4u32, 4], requires = "dask")]
+    pub tiles: Vec<u32>,
+
+    /// With --dask: each pixel's samples are split into this many ranges.
+    #[arg(long, value_name = "P", default_value_t = 1, requires = "dask")]
+    pub passes: u32,
+
     /// Tile edge in pixels (changes only speed, never the image).
     #[arg(long, value_name = "N", default_value_t = 16, hide = true,
           value_parser = clap::value_parser!(u32).range(1..))]

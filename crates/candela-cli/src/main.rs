@@ -6,6 +6,7 @@
 
 mod args;
 mod bench;
+mod dask;
 mod output;
 mod progress;
 mod render_cmd;
@@ -18,7 +19,10 @@ fn main() -> ExitCode {
     let cli = args::Cli::parse();
     let result = match cli.command {
         Some(args::Command::Bench(cmd)) => bench::run(cmd).map(|()| render_cmd::Outcome::Done),
-        None => render_cmd::run(&cli.render),
+        None => match &cli.render.dask {
+            Some(address) => dask::run(&cli.render, address),
+            None => render_cmd::run(&cli.render),
+        },
     };
     match result {
         Ok(render_cmd::Outcome::Done) => ExitCode::SUCCESS,

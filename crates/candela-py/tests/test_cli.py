@@ -28,3 +28,20 @@ def test_python_normals_and_direct_match_cli(cli_bin, spheres_path, tmp_path):
         subprocess.run([cli_bin, *flags, "-s", "4", "-r", "32", "24", "-q", "-f", str(out), spheres_path], check=True)
         film = scene.render(spp=4, width=32, height=24, **kwargs)
         np.testing.assert_array_equal(film.image(), candela.read_image(out))
+
+
+def test_cli_dask_front_equals_local_cli_render(cli_bin, spheres_path, tmp_path):
+    """`candela --dask local:2` hands the render to Dask and writes the same image."""
+    args = ["-s", "4", "-m", "2", "-r", "40", "30", "--seed", "3", "-q"]
+    local, distributed = tmp_path / "local.exr", tmp_path / "dask.exr"
+    subprocess.run([cli_bin, *args, "-t", "1", "-f", str(local), spheres_path], check=True)
+    subprocess.run([cli_bin, *args, "--dask", "local:2", "--tiles", "2", "2", "-f", str(distributed), spheres_path],
+                   check=True)
+    np.testing.assert_array_equal(candela.read_image(local), candela.read_image(distributed))
+
+
+def test_cli_dask_front_refuses_flags_it_cannot_honour(cli_bin, spheres_path, tmp_path):
+    done = subprocess.run([cli_bin, "--dask", "local:2", "-a", "64", "0.05", "-f", str(tmp_path / "x.png"),
+                           spheres_path], capture_output=True, text=True)
+    assert done.returncode == 2
+    assert "-a" in done.stderr and not (tmp_path / "x.png").exists()
