@@ -128,6 +128,7 @@ impl RenderKwargs<'_> {
                 height: self.height,
                 camera_mode,
                 bvh,
+                ..SceneOptions::default()
             },
             settings: RenderSettings {
                 spp: self.spp,
