@@ -28,10 +28,27 @@ fn main() -> ExitCode {
         Ok(render_cmd::Outcome::Done) => ExitCode::SUCCESS,
         Ok(render_cmd::Outcome::Interrupted) => ExitCode::from(render_cmd::INTERRUPTED),
         Err(err) => {
-            eprintln!("candela: error: {err:#}");
+            eprintln!("candela: error: {}", one_line(&err));
             ExitCode::from(exit_code(&err))
         }
     }
+}
+
+/// The error and its causes on one line, skipping causes whose text the
+/// message already carries (library errors often print their source too).
+fn one_line(err: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in err.chain() {
+        let text = cause.to_string();
+        if line.contains(&text) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&text);
+    }
+    line
 }
 
 /// Bad input exits with 2, anything else with 1.

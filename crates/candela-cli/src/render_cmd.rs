@@ -158,8 +158,12 @@ fn load_scene(args: &RenderArgs, width: u32, height: u32) -> Result<(Scene, Dura
                 let image = ProceduralSky::default().image(512, 256)?;
                 EnvironmentMap::from_image(&image, &options)?
             } else {
-                EnvironmentMap::load(path, &options)
-                    .with_context(|| format!("cannot read environment map {}", path.display()))?
+                EnvironmentMap::load(path, &options).map_err(|err| {
+                    UsageError(format!(
+                        "-e {}: cannot read the environment map: {err}",
+                        path.display()
+                    ))
+                })?
             };
             Some(Arc::new(map))
         }
