@@ -6,6 +6,7 @@ use crate::unit::render_cell;
 use crate::watch::run_interruptible;
 use crate::wire::PlacedFilm;
 use candela_render::film::Adaptive;
+use candela_render::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
 use candela_render::render::Cancel;
 use candela_render::render::{RenderError, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
@@ -36,11 +37,48 @@ fn key(opts: &SceneOptions) -> BuildKey {
     (
         opts.width,
         opts.height,
-        format!("{:?}/{:?}", opts.camera_mode, opts.bvh),
+        format!(
+            "{:?}/{:?}/{}/{:?}/{:?}",
+            opts.camera_mode,
+            opts.bvh,
+            opts.lens_radius,
+            opts.focal_distance,
+            opts.environment.as_ref().map(Arc::as_ptr)
+        ),
     )
 }
 
 impl PyScene {
+    /// The environment map a render asks for: a file, or `"sky"` for the
+    /// built-in procedural sky (as the CLI's `-e`).
+    fn environment(
+        &self,
+        path: Option<std::path::PathBuf>,
+        scale: f32,
+        rotate_y_deg: f32,
+    ) -> PyResult<Option<Arc<EnvironmentMap>>> {
+        let Some(path) = path else {
+            return Ok(None);
+        };
+        let options = EnvironmentOptions {
+            scale,
+            rotate_y_deg,
+        };
+        let map = if path.as_os_str() == "sky" && !path.exists() {
+            ProceduralSky::default()
+                .image(512, 256)
+                .map_err(|e| PyValueError::new_err(e.to_string()))
+                .and_then(|image| {
+                    EnvironmentMap::from_image(&image, &options)
+                        .map_err(|e| PyValueError::new_err(e.to_string()))
+                })?
+        } else {
+            EnvironmentMap::load(&path, &options)
+                .map_err(|e| PyValueError::new_err(format!("env_map={}: {e}", path.display())))?
+        };
+        Ok(Some(Arc::new(map)))
+    }
+
     /// Wraps a loaded description and its report lines.
     pub fn new(desc: SceneDesc, warnings: Vec<String>, notes: Vec<String>) -> Self {
         Self {
@@ -173,13 +211,16 @@ impl PyScene {
     /// range into that many consecutive parts added in order, as the
     /// distributed renderer does. `adaptive` stops each pixel once its mean
     /// is known well enough: True (CS184's `-a 64 0.05`), a tolerance, or
-    /// `(batch, tolerance)`. The GIL is released; Ctrl-C stops the
+    /// `(batch, tolerance)`. `aperture` and `focal_distance` make a thin
+    /// lens (the CLI's `-b` and `-d`); `env_map` lights the scene with an
+    /// equirectangular map, or `"sky"` for the built-in sky (the CLI's `-e`,
+    /// with `env_scale` and `env_rotate`). The GIL is released; Ctrl-C stops the
     /// render and raises KeyboardInterrupt.
     #[pyo3(signature = (
         *, spp=16, max_depth=5, light_samples=1, integrator="path", lighting="mis",
         accumulate=true, roulette=true, sampler="sobol", seed=0, width=800, height=600,
         camera="cs184", bvh="sah", cell=None, sample_range=None, passes=1, adaptive=None,
-        threads=0
+        threads=0, aperture=0.0, focal_distance=None, env_map=None, env_scale=1.0, env_rotate=0.0
     ))]
     #[allow(clippy::too_many_arguments)]
     fn render(
@@ -203,6 +244,11 @@ impl PyScene {
         passes: u32,
         adaptive: Option<Bound<'_, PyAny>>,
         threads: usize,
+        aperture: f32,
+        focal_distance: Option<f32>,
+        env_map: Option<std::path::PathBuf>,
+        env_scale: f32,
+        env_rotate: f32,
     ) -> PyResult<PyFilm> {
         let req = RenderKwargs {
             spp,
@@ -223,6 +269,9 @@ impl PyScene {
             passes,
             threads,
             adaptive: adaptive_arg(adaptive)?,
+            aperture,
+            focal_distance,
+            environment: self.environment(env_map, env_scale, env_rotate)?,
         }
         .validate()?;
         self.run(py, &req)

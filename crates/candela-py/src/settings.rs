@@ -47,6 +47,9 @@ pub struct RenderKwargs<'a> {
     pub passes: u32,
     pub adaptive: Option<Adaptive>,
     pub threads: usize,
+    pub aperture: f32,
+    pub focal_distance: Option<f32>,
+    pub environment: Option<std::sync::Arc<candela_render::light::EnvironmentMap>>,
 }
 
 fn bad<T>(msg: String) -> PyResult<T> {
@@ -128,7 +131,9 @@ impl RenderKwargs<'_> {
                 height: self.height,
                 camera_mode,
                 bvh,
-                ..SceneOptions::default()
+                lens_radius: self.aperture,
+                focal_distance: self.focal_distance,
+                environment: self.environment.clone(),
             },
             settings: RenderSettings {
                 spp: self.spp,

@@ -45,3 +45,12 @@ def test_cli_dask_front_refuses_flags_it_cannot_honour(cli_bin, spheres_path, tm
                            spheres_path], capture_output=True, text=True)
     assert done.returncode == 2
     assert "-a" in done.stderr and not (tmp_path / "x.png").exists()
+
+
+def test_python_lens_and_environment_match_cli(cli_bin, spheres_path, tmp_path):
+    out = tmp_path / "cli.exr"
+    subprocess.run([cli_bin, "-s", "4", "-r", "32", "24", "-b", "0.1", "-d", "4", "-e", "sky", "-q", "-f", str(out),
+                    spheres_path], check=True)
+    film = candela.load(spheres_path).render(spp=4, width=32, height=24, aperture=0.1, focal_distance=4.0,
+                                             env_map="sky")
+    np.testing.assert_array_equal(film.image(), candela.read_image(out))

@@ -110,8 +110,15 @@ class Scene:
         passes: int = 1,
         adaptive: Union[None, bool, float, Tuple[int, float]] = None,
         threads: int = 0,
+        aperture: float = 0.0,
+        focal_distance: Optional[float] = None,
+        env_map: Optional[_Path] = None,
+        env_scale: float = 1.0,
+        env_rotate: float = 0.0,
     ) -> Film:
-        """Renders the scene; ``cell=(x, y, width, height)``; Ctrl-C raises
+        """Renders the scene; ``cell=(x, y, width, height)``; ``aperture`` and
+        ``focal_distance`` are the thin lens (CLI ``-b``/``-d``); ``env_map``
+        an equirectangular map or ``"sky"`` (CLI ``-e``); Ctrl-C raises
         KeyboardInterrupt."""
 
 def load(path: _Path, *, strict: bool = False) -> Scene:
