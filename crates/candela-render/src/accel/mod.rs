@@ -213,7 +213,8 @@ impl Accel {
                 )
             }
             Layout::Wide4 => {
-                let wide = Bvh4::from_binary(bvh);
+                let mut wide = Bvh4::from_binary(bvh);
+                wide.pad_leaves(4);
                 let leaves = LeafBlocks::new(&wide, prim);
                 let pb = leaves.bytes();
                 (
