@@ -185,6 +185,34 @@ impl Bvh4 {
                 stats.node();
                 let node = &self.nodes[item.child as usize];
                 let (dist, mask) = r4.enter(&node.bounds, *t_max);
+                let entry = |lane: usize| Entry {
+                    child: node.child[lane],
+                    count: node.count[lane],
+                    t: dist[lane],
+                };
+                // One or two children entered (most nodes on incoherent
+                // rays) skip the general sort. Ties go to the higher lane,
+                // as in the sort below.
+                let a = mask.trailing_zeros() as usize;
+                let rest = mask & mask.wrapping_sub(1);
+                if mask != 0 && rest == 0 {
+                    item = entry(a);
+                    continue;
+                }
+                if mask != 0 && rest & (rest - 1) == 0 {
+                    let b = rest.trailing_zeros() as usize;
+                    let (near, far) = if dist[a] < dist[b] { (a, b) } else { (b, a) };
+                    if sp < N {
+                        let e = entry(far);
+                        if e.count == 0 {
+                            prefetch(&self.nodes[e.child as usize]);
+                        }
+                        stack[sp] = e;
+                        sp += 1;
+                    }
+                    item = entry(near);
+                    continue;
+                }
                 if mask != 0 {
                     // Hit lanes sorted far to near; the nearest is taken now.
                     let mut hits = [Entry {
@@ -197,11 +225,7 @@ impl Bvh4 {
                     while bits != 0 {
                         let lane = bits.trailing_zeros() as usize;
                         bits &= bits - 1;
-                        let e = Entry {
-                            child: node.child[lane],
-                            count: node.count[lane],
-                            t: dist[lane],
-                        };
+                        let e = entry(lane);
                         let mut j = k;
                         while j > 0 && hits[j - 1].t < e.t {
                             hits[j] = hits[j - 1];
