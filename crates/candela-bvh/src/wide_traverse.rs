@@ -61,6 +61,10 @@ impl Ray4 {
     }
 }
 
+/// The leaf prefetch of callers that have nothing to prefetch.
+#[inline(always)]
+fn no_prefetch(_first: u32, _count: u32) {}
+
 impl Bvh4 {
     /// Closest hit; same contract as [`crate::Bvh::closest_hit`].
     #[inline]
@@ -72,32 +76,40 @@ impl Bvh4 {
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> Option<(u32, f32)> {
         let mut best = None;
-        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
-            for slot in first..first + count {
-                if let Some(t) = test(slot, *t_max) {
-                    *t_max = t;
-                    best = Some((slot, t));
+        self.walk(
+            ray,
+            &mut t_max,
+            stats,
+            no_prefetch,
+            |first, count, t_max| {
+                for slot in first..first + count {
+                    if let Some(t) = test(slot, *t_max) {
+                        *t_max = t;
+                        best = Some((slot, t));
+                    }
                 }
-            }
-            false
-        });
+                false
+            },
+        );
         best
     }
 
     /// Closest hit with a whole leaf per call, for callers that test
     /// primitives in SIMD blocks: `test(first, count, t_max)` intersects
     /// slots `first .. first + count` and returns the closest `(slot, t)`
-    /// with `t < t_max`.
+    /// with `t < t_max`. `prefetch(first, count)` is called for a leaf
+    /// put aside for later, so the caller can start loading its data.
     #[inline]
     pub fn closest_hit_leaves<S: StatsSink>(
         &self,
         ray: &RayBoxQuery,
         mut t_max: f32,
         stats: &mut S,
+        prefetch: impl Fn(u32, u32),
         mut test: impl FnMut(u32, u32, f32) -> Option<(u32, f32)>,
     ) -> Option<(u32, f32)> {
         let mut best = None;
-        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
+        self.walk(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
             if let Some((slot, t)) = test(first, count, *t_max) {
                 *t_max = t;
                 best = Some((slot, t));
@@ -114,9 +126,10 @@ impl Bvh4 {
         ray: &RayBoxQuery,
         mut t_max: f32,
         stats: &mut S,
+        prefetch: impl Fn(u32, u32),
         mut test: impl FnMut(u32, u32, f32) -> bool,
     ) -> bool {
-        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
+        self.walk(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
             test(first, count, *t_max)
         })
     }
@@ -130,9 +143,13 @@ impl Bvh4 {
         stats: &mut S,
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> bool {
-        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
-            (first..first + count).any(|slot| test(slot, *t_max).is_some())
-        })
+        self.walk(
+            ray,
+            &mut t_max,
+            stats,
+            no_prefetch,
+            |first, count, t_max| (first..first + count).any(|slot| test(slot, *t_max).is_some()),
+        )
     }
 
     /// Picks the stack size from the tree depth.
@@ -142,12 +159,26 @@ impl Bvh4 {
         ray: &RayBoxQuery,
         t_max: &mut f32,
         stats: &mut S,
+        prefetch_leaf: impl Fn(u32, u32),
         visit: impl FnMut(u32, u32, &mut f32) -> bool,
     ) -> bool {
         if self.depth <= SHALLOW_DEPTH {
-            self.walk_with::<SHALLOW_STACK, S>(ray, t_max, stats, visit)
+            self.walk_with::<SHALLOW_STACK, S>(ray, t_max, stats, prefetch_leaf, visit)
         } else {
-            self.walk_with::<STACK_SIZE, S>(ray, t_max, stats, visit)
+            self.walk_with::<STACK_SIZE, S>(ray, t_max, stats, prefetch_leaf, visit)
+        }
+    }
+
+    /// Starts loading what a pushed entry will read: both cache lines of a
+    /// node, or the caller's leaf data.
+    #[inline(always)]
+    fn prefetch_entry(&self, e: &Entry, prefetch_leaf: &impl Fn(u32, u32)) {
+        if e.count == 0 {
+            let node = &self.nodes[e.child as usize];
+            prefetch(node);
+            prefetch(&node.bounds[4]);
+        } else {
+            prefetch_leaf(e.child, e.count);
         }
     }
 
@@ -158,6 +189,7 @@ impl Bvh4 {
         ray: &RayBoxQuery,
         t_max: &mut f32,
         stats: &mut S,
+        prefetch_leaf: impl Fn(u32, u32),
         mut visit: impl FnMut(u32, u32, &mut f32) -> bool,
     ) -> bool {
         if self.nodes.is_empty() {
@@ -204,9 +236,7 @@ impl Bvh4 {
                     let (near, far) = if dist[a] < dist[b] { (a, b) } else { (b, a) };
                     if sp < N {
                         let e = entry(far);
-                        if e.count == 0 {
-                            prefetch(&self.nodes[e.child as usize]);
-                        }
+                        self.prefetch_entry(&e, &prefetch_leaf);
                         stack[sp] = e;
                         sp += 1;
                     }
@@ -236,9 +266,7 @@ impl Bvh4 {
                     }
                     for e in &hits[..k - 1] {
                         if sp < N {
-                            if e.count == 0 {
-                                prefetch(&self.nodes[e.child as usize]);
-                            }
+                            self.prefetch_entry(e, &prefetch_leaf);
                             stack[sp] = *e;
                             sp += 1;
                         }

@@ -151,25 +151,37 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
                     "{label} {strategy:?}/{max_leaf} ray {k}: 4-wide any"
                 );
                 // Whole leaves per call, as SIMD packet callers use it.
-                let leaves = wide.closest_hit_leaves(&q, t_max, &mut (), |first, count, tm| {
-                    (first..first + count)
-                        .filter_map(|slot| {
-                            let b = &boxes[order[slot as usize] as usize];
-                            box_hit(o, d, b, tm).filter(|&t| t < tm).map(|t| (slot, t))
-                        })
-                        .min_by(|a, b| a.1.total_cmp(&b.1))
-                });
+                let leaves = wide.closest_hit_leaves(
+                    &q,
+                    t_max,
+                    &mut (),
+                    |_, _| {},
+                    |first, count, tm| {
+                        (first..first + count)
+                            .filter_map(|slot| {
+                                let b = &boxes[order[slot as usize] as usize];
+                                box_hit(o, d, b, tm).filter(|&t| t < tm).map(|t| (slot, t))
+                            })
+                            .min_by(|a, b| a.1.total_cmp(&b.1))
+                    },
+                );
                 assert_eq!(
                     leaves.map(|g| g.1),
                     brute,
                     "{label} ray {k}: leaf-wise closest"
                 );
-                let any_leaves = wide.any_hit_leaves(&q, t_max, &mut (), |first, count, tm| {
-                    (first..first + count).any(|slot| {
-                        let b = &boxes[order[slot as usize] as usize];
-                        box_hit(o, d, b, tm).is_some_and(|t| t < tm)
-                    })
-                });
+                let any_leaves = wide.any_hit_leaves(
+                    &q,
+                    t_max,
+                    &mut (),
+                    |_, _| {},
+                    |first, count, tm| {
+                        (first..first + count).any(|slot| {
+                            let b = &boxes[order[slot as usize] as usize];
+                            box_hit(o, d, b, tm).is_some_and(|t| t < tm)
+                        })
+                    },
+                );
                 assert_eq!(
                     any_leaves,
                     brute.is_some(),
