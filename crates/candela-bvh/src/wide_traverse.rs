@@ -76,7 +76,7 @@ impl Bvh4 {
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> Option<(u32, f32)> {
         let mut best = None;
-        self.walk(
+        self.walk::<true, S>(
             ray,
             &mut t_max,
             stats,
@@ -109,7 +109,7 @@ impl Bvh4 {
         mut test: impl FnMut(u32, u32, f32) -> Option<(u32, f32)>,
     ) -> Option<(u32, f32)> {
         let mut best = None;
-        self.walk(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
+        self.walk::<true, S>(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
             if let Some((slot, t)) = test(first, count, *t_max) {
                 *t_max = t;
                 best = Some((slot, t));
@@ -129,7 +129,7 @@ impl Bvh4 {
         prefetch: impl Fn(u32, u32),
         mut test: impl FnMut(u32, u32, f32) -> bool,
     ) -> bool {
-        self.walk(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
+        self.walk::<false, S>(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
             test(first, count, *t_max)
         })
     }
@@ -143,7 +143,7 @@ impl Bvh4 {
         stats: &mut S,
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> bool {
-        self.walk(
+        self.walk::<false, S>(
             ray,
             &mut t_max,
             stats,
@@ -152,9 +152,12 @@ impl Bvh4 {
         )
     }
 
-    /// Picks the stack size from the tree depth.
+    /// Picks the stack size from the tree depth. `ORDERED` visits entered
+    /// children nearest first, which closest-hit queries need to shrink
+    /// `t_max` early; any-hit queries skip the sorting (a shadow ray is
+    /// usually unoccluded and then visits the same nodes in any order).
     #[inline(always)]
-    fn walk<S: StatsSink>(
+    fn walk<const ORDERED: bool, S: StatsSink>(
         &self,
         ray: &RayBoxQuery,
         t_max: &mut f32,
@@ -163,9 +166,9 @@ impl Bvh4 {
         visit: impl FnMut(u32, u32, &mut f32) -> bool,
     ) -> bool {
         if self.depth <= SHALLOW_DEPTH {
-            self.walk_with::<SHALLOW_STACK, S>(ray, t_max, stats, prefetch_leaf, visit)
+            self.walk_with::<ORDERED, SHALLOW_STACK, S>(ray, t_max, stats, prefetch_leaf, visit)
         } else {
-            self.walk_with::<STACK_SIZE, S>(ray, t_max, stats, prefetch_leaf, visit)
+            self.walk_with::<ORDERED, STACK_SIZE, S>(ray, t_max, stats, prefetch_leaf, visit)
         }
     }
 
@@ -184,7 +187,7 @@ impl Bvh4 {
 
     /// The traversal loop; `N` stack entries suffice for the tree's depth.
     #[inline(always)]
-    fn walk_with<const N: usize, S: StatsSink>(
+    fn walk_with<const ORDERED: bool, const N: usize, S: StatsSink>(
         &self,
         ray: &RayBoxQuery,
         t_max: &mut f32,
@@ -233,7 +236,11 @@ impl Bvh4 {
                 }
                 if mask != 0 && rest & (rest - 1) == 0 {
                     let b = rest.trailing_zeros() as usize;
-                    let (near, far) = if dist[a] < dist[b] { (a, b) } else { (b, a) };
+                    let (near, far) = if !ORDERED || dist[a] < dist[b] {
+                        (a, b)
+                    } else {
+                        (b, a)
+                    };
                     if sp < N {
                         let e = entry(far);
                         self.prefetch_entry(&e, &prefetch_leaf);
@@ -257,7 +264,7 @@ impl Bvh4 {
                         bits &= bits - 1;
                         let e = entry(lane);
                         let mut j = k;
-                        while j > 0 && hits[j - 1].t < e.t {
+                        while ORDERED && j > 0 && hits[j - 1].t < e.t {
                             hits[j] = hits[j - 1];
                             j -= 1;
                         }
