@@ -23,7 +23,7 @@ mod wide_validate;
 pub use aabb::Aabb;
 pub use node::Node;
 pub use traverse::{RayBoxQuery, StatsSink, TraversalStats};
-pub use wide::{Bvh4, Node4};
+pub use wide::{Bvh4, Node4, PADDING};
 
 use glam::Vec3;
 

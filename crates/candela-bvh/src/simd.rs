@@ -43,6 +43,11 @@ mod imp {
         pub fn lane_add(self, o: Self) -> Self {
             Self(unsafe { _mm_add_ps(self.0, o.0) })
         }
+        /// Clears the sign bits.
+        #[inline(always)]
+        pub fn abs(self) -> Self {
+            Self(unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), self.0) })
+        }
         #[inline(always)]
         pub fn lane_div(self, o: Self) -> Self {
             Self(unsafe { _mm_div_ps(self.0, o.0) })
@@ -120,6 +125,10 @@ mod imp {
             Self(std::array::from_fn(|i| self.0[i] + o.0[i]))
         }
         #[inline(always)]
+        pub fn abs(self) -> Self {
+            Self(self.0.map(f32::abs))
+        }
+        #[inline(always)]
         pub fn lane_div(self, o: Self) -> Self {
             Self(std::array::from_fn(|i| self.0[i] / o.0[i]))
         }
@@ -189,5 +198,10 @@ mod tests {
         assert_eq!(((a + b) / b).to_array()[0], 1.5);
         assert_eq!(a.lt_mask(b), 0b1001);
         assert_eq!(a.ne_mask(F32x4::splat(3.0)), 0b1011);
+        let signs = F32x4::load(&[-1.5, 0.0, -0.0, 2.0]).abs().to_array();
+        assert_eq!(
+            signs.map(f32::to_bits),
+            [1.5f32, 0.0, 0.0, 2.0].map(f32::to_bits)
+        );
     }
 }

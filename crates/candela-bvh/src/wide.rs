@@ -10,6 +10,9 @@
 use crate::node::Node;
 use crate::{Aabb, Bvh};
 
+/// The primitive order's entry for an unused slot (see [`Bvh4::pad_leaves`]).
+pub const PADDING: u32 = u32::MAX;
+
 /// Four child boxes and references. 128 bytes, cache-line aligned.
 ///
 /// Rows of `bounds`: min x, min y, min z, max x, max y, max z; lane `i`
@@ -87,7 +90,36 @@ impl Bvh4 {
         }
     }
 
-    /// `primitive_order()[slot]` is the caller's index of the primitive in `slot`.
+    /// Moves every leaf to start at a multiple of `block` slots, filling
+    /// the gaps in the primitive order with [`PADDING`]. A caller that packs
+    /// each leaf's primitives into blocks of `block` then finds a leaf's
+    /// first block at `first / block`, with no lookup table between the
+    /// node and the primitives (one dependent load less per leaf visited).
+    pub fn pad_leaves(&mut self, block: u32) {
+        let block = block.max(1);
+        let mut leaves: Vec<(u32, usize, usize)> = Vec::new();
+        for (i, n) in self.nodes.iter().enumerate() {
+            for lane in 0..4 {
+                if n.count[lane] > 0 {
+                    leaves.push((n.child[lane], i, lane));
+                }
+            }
+        }
+        leaves.sort_unstable();
+        let mut order = Vec::with_capacity(self.order.len() + 3 * leaves.len());
+        for (first, node, lane) in leaves {
+            let count = self.nodes[node].count[lane];
+            let start = order.len() as u32;
+            order.extend_from_slice(&self.order[first as usize..(first + count) as usize]);
+            let padded = count.div_ceil(block) * block;
+            order.resize((start + padded) as usize, PADDING);
+            self.nodes[node].child[lane] = start;
+        }
+        self.order = order;
+    }
+
+    /// `primitive_order()[slot]` is the caller's index of the primitive in
+    /// `slot`, or [`PADDING`] for a gap left by [`Bvh4::pad_leaves`].
     pub fn primitive_order(&self) -> &[u32] {
         &self.order
     }

@@ -61,6 +61,10 @@ impl Ray4 {
     }
 }
 
+/// The leaf prefetch of callers that have nothing to prefetch.
+#[inline(always)]
+fn no_prefetch(_first: u32, _count: u32) {}
+
 impl Bvh4 {
     /// Closest hit; same contract as [`crate::Bvh::closest_hit`].
     #[inline]
@@ -72,32 +76,40 @@ impl Bvh4 {
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> Option<(u32, f32)> {
         let mut best = None;
-        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
-            for slot in first..first + count {
-                if let Some(t) = test(slot, *t_max) {
-                    *t_max = t;
-                    best = Some((slot, t));
+        self.walk::<true, S>(
+            ray,
+            &mut t_max,
+            stats,
+            no_prefetch,
+            |first, count, t_max| {
+                for slot in first..first + count {
+                    if let Some(t) = test(slot, *t_max) {
+                        *t_max = t;
+                        best = Some((slot, t));
+                    }
                 }
-            }
-            false
-        });
+                false
+            },
+        );
         best
     }
 
     /// Closest hit with a whole leaf per call, for callers that test
     /// primitives in SIMD blocks: `test(first, count, t_max)` intersects
     /// slots `first .. first + count` and returns the closest `(slot, t)`
-    /// with `t < t_max`.
+    /// with `t < t_max`. `prefetch(first, count)` is called for a leaf
+    /// put aside for later, so the caller can start loading its data.
     #[inline]
     pub fn closest_hit_leaves<S: StatsSink>(
         &self,
         ray: &RayBoxQuery,
         mut t_max: f32,
         stats: &mut S,
+        prefetch: impl Fn(u32, u32),
         mut test: impl FnMut(u32, u32, f32) -> Option<(u32, f32)>,
     ) -> Option<(u32, f32)> {
         let mut best = None;
-        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
+        self.walk::<true, S>(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
             if let Some((slot, t)) = test(first, count, *t_max) {
                 *t_max = t;
                 best = Some((slot, t));
@@ -114,9 +126,10 @@ impl Bvh4 {
         ray: &RayBoxQuery,
         mut t_max: f32,
         stats: &mut S,
+        prefetch: impl Fn(u32, u32),
         mut test: impl FnMut(u32, u32, f32) -> bool,
     ) -> bool {
-        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
+        self.walk::<false, S>(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
             test(first, count, *t_max)
         })
     }
@@ -130,34 +143,56 @@ impl Bvh4 {
         stats: &mut S,
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> bool {
-        self.walk(ray, &mut t_max, stats, |first, count, t_max| {
-            (first..first + count).any(|slot| test(slot, *t_max).is_some())
-        })
+        self.walk::<false, S>(
+            ray,
+            &mut t_max,
+            stats,
+            no_prefetch,
+            |first, count, t_max| (first..first + count).any(|slot| test(slot, *t_max).is_some()),
+        )
     }
 
-    /// Picks the stack size from the tree depth.
+    /// Picks the stack size from the tree depth. `ORDERED` visits entered
+    /// children nearest first, which closest-hit queries need to shrink
+    /// `t_max` early; any-hit queries skip the sorting (a shadow ray is
+    /// usually unoccluded and then visits the same nodes in any order).
     #[inline(always)]
-    fn walk<S: StatsSink>(
+    fn walk<const ORDERED: bool, S: StatsSink>(
         &self,
         ray: &RayBoxQuery,
         t_max: &mut f32,
         stats: &mut S,
+        prefetch_leaf: impl Fn(u32, u32),
         visit: impl FnMut(u32, u32, &mut f32) -> bool,
     ) -> bool {
         if self.depth <= SHALLOW_DEPTH {
-            self.walk_with::<SHALLOW_STACK, S>(ray, t_max, stats, visit)
+            self.walk_with::<ORDERED, SHALLOW_STACK, S>(ray, t_max, stats, prefetch_leaf, visit)
         } else {
-            self.walk_with::<STACK_SIZE, S>(ray, t_max, stats, visit)
+            self.walk_with::<ORDERED, STACK_SIZE, S>(ray, t_max, stats, prefetch_leaf, visit)
+        }
+    }
+
+    /// Starts loading what a pushed entry will read: both cache lines of a
+    /// node, or the caller's leaf data.
+    #[inline(always)]
+    fn prefetch_entry(&self, e: &Entry, prefetch_leaf: &impl Fn(u32, u32)) {
+        if e.count == 0 {
+            let node = &self.nodes[e.child as usize];
+            prefetch(node);
+            prefetch(&node.bounds[4]);
+        } else {
+            prefetch_leaf(e.child, e.count);
         }
     }
 
     /// The traversal loop; `N` stack entries suffice for the tree's depth.
     #[inline(always)]
-    fn walk_with<const N: usize, S: StatsSink>(
+    fn walk_with<const ORDERED: bool, const N: usize, S: StatsSink>(
         &self,
         ray: &RayBoxQuery,
         t_max: &mut f32,
         stats: &mut S,
+        prefetch_leaf: impl Fn(u32, u32),
         mut visit: impl FnMut(u32, u32, &mut f32) -> bool,
     ) -> bool {
         if self.nodes.is_empty() {
@@ -185,6 +220,36 @@ impl Bvh4 {
                 stats.node();
                 let node = &self.nodes[item.child as usize];
                 let (dist, mask) = r4.enter(&node.bounds, *t_max);
+                let entry = |lane: usize| Entry {
+                    child: node.child[lane],
+                    count: node.count[lane],
+                    t: dist[lane],
+                };
+                // One or two children entered (most nodes on incoherent
+                // rays) skip the general sort. Ties go to the higher lane,
+                // as in the sort below.
+                let a = mask.trailing_zeros() as usize;
+                let rest = mask & mask.wrapping_sub(1);
+                if mask != 0 && rest == 0 {
+                    item = entry(a);
+                    continue;
+                }
+                if mask != 0 && rest & (rest - 1) == 0 {
+                    let b = rest.trailing_zeros() as usize;
+                    let (near, far) = if !ORDERED || dist[a] < dist[b] {
+                        (a, b)
+                    } else {
+                        (b, a)
+                    };
+                    if sp < N {
+                        let e = entry(far);
+                        self.prefetch_entry(&e, &prefetch_leaf);
+                        stack[sp] = e;
+                        sp += 1;
+                    }
+                    item = entry(near);
+                    continue;
+                }
                 if mask != 0 {
                     // Hit lanes sorted far to near; the nearest is taken now.
                     let mut hits = [Entry {
@@ -197,13 +262,9 @@ impl Bvh4 {
                     while bits != 0 {
                         let lane = bits.trailing_zeros() as usize;
                         bits &= bits - 1;
-                        let e = Entry {
-                            child: node.child[lane],
-                            count: node.count[lane],
-                            t: dist[lane],
-                        };
+                        let e = entry(lane);
                         let mut j = k;
-                        while j > 0 && hits[j - 1].t < e.t {
+                        while ORDERED && j > 0 && hits[j - 1].t < e.t {
                             hits[j] = hits[j - 1];
                             j -= 1;
                         }
@@ -212,9 +273,7 @@ impl Bvh4 {
                     }
                     for e in &hits[..k - 1] {
                         if sp < N {
-                            if e.count == 0 {
-                                prefetch(&self.nodes[e.child as usize]);
-                            }
+                            self.prefetch_entry(e, &prefetch_leaf);
                             stack[sp] = *e;
                             sp += 1;
                         }

@@ -1,19 +1,21 @@
 //! Structural checks of the 4-wide hierarchy.
 
+use crate::wide::PADDING;
 use crate::{Aabb, Bvh4};
 
 impl Bvh4 {
     /// Checks every invariant against the primitive boxes: every node
     /// reached once from the root, child nodes' boxes inside their lane's
     /// box, each primitive's box inside its leaf lane, leaf ranges tiling
-    /// the slots, unused lanes empty, and the order a permutation.
+    /// the slots, unused lanes empty, and the order a permutation (apart
+    /// from [`PADDING`] entries, which no leaf may count).
     pub fn validate(&self, boxes: &[Aabb]) -> Result<(), String> {
-        let n = self.order.len();
+        let n = self.order.iter().filter(|&&i| i != PADDING).count();
         if n != boxes.len() {
             return Err(format!("order has {n} entries for {} boxes", boxes.len()));
         }
         let mut seen = vec![false; n];
-        for &i in &self.order {
+        for &i in self.order.iter().filter(|&&i| i != PADDING) {
             let s = seen
                 .get_mut(i as usize)
                 .ok_or(format!("order holds {i} >= {n}"))?;
@@ -29,7 +31,7 @@ impl Bvh4 {
             };
         }
         let mut reached = vec![false; self.nodes.len()];
-        let mut slot_used = vec![false; n];
+        let mut slot_used: Vec<bool> = self.order.iter().map(|&i| i == PADDING).collect();
         let mut stack = vec![(
             0usize,
             Aabb::new(
@@ -68,7 +70,7 @@ impl Bvh4 {
                             .get_mut(slot)
                             .ok_or(format!("slot {slot} out of range"))?;
                         if std::mem::replace(used, true) {
-                            return Err(format!("slot {slot} in two leaves"));
+                            return Err(format!("slot {slot} in two leaves, or padding"));
                         }
                         if !b.contains(&boxes[self.order[slot] as usize]) {
                             return Err(format!("primitive in slot {slot} sticks out of its leaf"));

@@ -5,7 +5,9 @@
 //! random. Closest-hit must return the brute-force distance and any-hit the
 //! brute-force verdict, for every ray.
 
-use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, TraversalStats};
+use candela_bvh::{
+    Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, TraversalStats, PADDING,
+};
 use glam::Vec3;
 
 /// SplitMix64: a seeded generator, so every failure reproduces.
@@ -72,6 +74,19 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
             assert!(wide.depth() <= bvh.depth());
             let order = bvh.primitive_order();
             assert_eq!(order, wide.primitive_order());
+            let mut padded = wide.clone();
+            padded.pad_leaves(4);
+            if let Err(e) = padded.validate(boxes) {
+                panic!("{label} {strategy:?}/{max_leaf} (padded): {e}");
+            }
+            let porder = padded.primitive_order();
+            for n in padded.nodes() {
+                for lane in 0..4 {
+                    if n.count[lane] > 0 {
+                        assert_eq!(n.child[lane] % 4, 0, "{label}: padded leaf unaligned");
+                    }
+                }
+            }
             let world = bvh.bounds();
             for k in 0..rays {
                 let o = if world.is_empty() {
@@ -136,30 +151,48 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
                     "{label} {strategy:?}/{max_leaf} ray {k}: 4-wide any"
                 );
                 // Whole leaves per call, as SIMD packet callers use it.
-                let leaves = wide.closest_hit_leaves(&q, t_max, &mut (), |first, count, tm| {
-                    (first..first + count)
-                        .filter_map(|slot| {
-                            let b = &boxes[order[slot as usize] as usize];
-                            box_hit(o, d, b, tm).filter(|&t| t < tm).map(|t| (slot, t))
-                        })
-                        .min_by(|a, b| a.1.total_cmp(&b.1))
-                });
+                let leaves = wide.closest_hit_leaves(
+                    &q,
+                    t_max,
+                    &mut (),
+                    |_, _| {},
+                    |first, count, tm| {
+                        (first..first + count)
+                            .filter_map(|slot| {
+                                let b = &boxes[order[slot as usize] as usize];
+                                box_hit(o, d, b, tm).filter(|&t| t < tm).map(|t| (slot, t))
+                            })
+                            .min_by(|a, b| a.1.total_cmp(&b.1))
+                    },
+                );
                 assert_eq!(
                     leaves.map(|g| g.1),
                     brute,
                     "{label} ray {k}: leaf-wise closest"
                 );
-                let any_leaves = wide.any_hit_leaves(&q, t_max, &mut (), |first, count, tm| {
-                    (first..first + count).any(|slot| {
-                        let b = &boxes[order[slot as usize] as usize];
-                        box_hit(o, d, b, tm).is_some_and(|t| t < tm)
-                    })
-                });
+                let any_leaves = wide.any_hit_leaves(
+                    &q,
+                    t_max,
+                    &mut (),
+                    |_, _| {},
+                    |first, count, tm| {
+                        (first..first + count).any(|slot| {
+                            let b = &boxes[order[slot as usize] as usize];
+                            box_hit(o, d, b, tm).is_some_and(|t| t < tm)
+                        })
+                    },
+                );
                 assert_eq!(
                     any_leaves,
                     brute.is_some(),
                     "{label} ray {k}: leaf-wise any"
                 );
+                let padded_hit = padded.closest_hit(&q, t_max, &mut (), |slot, tm| {
+                    let id = porder[slot as usize];
+                    assert_ne!(id, PADDING, "{label}: padding slot visited");
+                    box_hit(o, d, &boxes[id as usize], tm).filter(|&t| t < tm)
+                });
+                assert_eq!(padded_hit.map(|g| g.1), brute, "{label} ray {k}: padded");
             }
         }
     }

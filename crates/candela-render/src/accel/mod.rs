@@ -213,7 +213,8 @@ impl Accel {
                 )
             }
             Layout::Wide4 => {
-                let wide = Bvh4::from_binary(bvh);
+                let mut wide = Bvh4::from_binary(bvh);
+                wide.pad_leaves(4);
                 let leaves = LeafBlocks::new(&wide, prim);
                 let pb = leaves.bytes();
                 (
@@ -304,10 +305,11 @@ impl Accel {
             }
             Tree::Wide4(bvh, leaves) => {
                 let tr4 = TriangleRay4::new(&tri_ray);
+                let prefetch = |first, count| leaves.prefetch(first, count);
                 let mut hit = LeafHit::default();
                 let test =
                     |first, count, t_max| leaves.closest(first, count, ray, &tr4, t_max, &mut hit);
-                let (slot, t) = bvh.closest_hit_leaves(&q, ray.t_max, stats, test)?;
+                let (slot, t) = bvh.closest_hit_leaves(&q, ray.t_max, stats, prefetch, test)?;
                 let prim = bvh.primitive_order()[slot as usize];
                 Some(Hit {
                     t,
@@ -334,8 +336,9 @@ impl Accel {
             }
             Tree::Wide4(bvh, leaves) => {
                 let tr4 = TriangleRay4::new(&tri_ray);
+                let prefetch = |first, count| leaves.prefetch(first, count);
                 let test = |first, count, t_max| leaves.any(first, count, ray, &tr4, t_max);
-                bvh.any_hit_leaves(&q, ray.t_max, stats, test)
+                bvh.any_hit_leaves(&q, ray.t_max, stats, prefetch, test)
             }
         }
     }

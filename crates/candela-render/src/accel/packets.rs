@@ -3,28 +3,34 @@
 
 use crate::geometry::Ray;
 use crate::shape::{
-    intersect_sphere, intersect_triangle4, sphere_uv, TrianglePacket, TriangleRay4,
+    intersect_sphere, intersect_triangle4, occluded_triangle4, sphere_uv, TrianglePacket,
+    TriangleRay4,
 };
-use candela_bvh::Bvh4;
+use candela_bvh::simd::prefetch;
+use candela_bvh::{Bvh4, PADDING};
 use glam::Vec3;
 
 /// Up to four primitives. A sphere lane keeps its centre in the `v0` rows
-/// and its radius in the `v1.x` row. 160 bytes. Primitive ids are not
+/// and its radius in the `v1.x` row. 160 bytes, 32-byte aligned so that a
+/// block spans three cache lines, not four. Primitive ids are not
 /// stored: the BVH's primitive order maps the winning slot to its id.
 #[derive(Clone, Copy, Debug)]
-#[repr(C, align(16))]
+#[repr(C, align(32))]
 pub(super) struct Block {
     tri: TrianglePacket,
     tri_lanes: u32,
     sphere_lanes: u32,
 }
 
-/// The blocks of every leaf, and where each leaf's blocks start.
+const _: () = assert!(std::mem::size_of::<Block>() == 160);
+
+/// The blocks of every leaf: block `k` holds slots `4k .. 4k + 4` of a
+/// tree whose leaves were padded to multiples of four
+/// ([`Bvh4::pad_leaves`]), so a leaf starting at slot `first` starts at
+/// block `first / 4`.
 #[derive(Clone, Debug)]
 pub(super) struct LeafBlocks {
     blocks: Vec<Block>,
-    /// Indexed by a leaf's first slot: the index of its first block.
-    first_block: Vec<u32>,
 }
 
 /// The winning primitive's barycentrics (or sphere coordinates).
@@ -35,57 +41,56 @@ pub(super) struct LeafHit {
 }
 
 impl LeafBlocks {
-    /// Packs the primitives of every leaf of `bvh`; `prim(id)` gives a
-    /// triangle or `Err((center, radius))` for a sphere.
+    /// Packs the primitives of `bvh`, whose leaves must be padded to
+    /// multiples of four; `prim(id)` gives a triangle or
+    /// `Err((center, radius))` for a sphere.
     pub fn new(bvh: &Bvh4, prim: impl Fn(u32) -> Result<[Vec3; 3], (Vec3, f32)>) -> Self {
-        let order = bvh.primitive_order();
-        let mut leaves: Vec<(u32, u32)> = bvh
-            .nodes()
-            .iter()
-            .flat_map(|n| {
-                (0..4)
-                    .filter(|&l| n.count[l] > 0)
-                    .map(|l| (n.child[l], n.count[l]))
-            })
-            .collect();
-        leaves.sort_unstable();
-        let mut first_block = vec![0u32; order.len()];
-        let mut blocks = Vec::with_capacity(order.len() / 2);
-        for (first, count) in leaves {
-            first_block[first as usize] = blocks.len() as u32;
-            let slots = &order[first as usize..(first + count) as usize];
-            for chunk in slots.chunks(4) {
+        let blocks = bvh
+            .primitive_order()
+            .chunks(4)
+            .map(|chunk| {
                 let mut tris = [[Vec3::ZERO; 3]; 4];
-                let mut b = Block {
-                    tri: TrianglePacket::new(&[]),
-                    tri_lanes: 0,
-                    sphere_lanes: 0,
-                };
+                let (mut tri_lanes, mut sphere_lanes) = (0, 0);
                 for (lane, &id) in chunk.iter().enumerate() {
+                    if id == PADDING {
+                        continue;
+                    }
                     match prim(id) {
                         Ok(t) => {
                             tris[lane] = t;
-                            b.tri_lanes |= 1 << lane;
+                            tri_lanes |= 1 << lane;
                         }
                         Err((c, r)) => {
                             tris[lane] = [c, Vec3::new(r, 0.0, 0.0), Vec3::ZERO];
-                            b.sphere_lanes |= 1 << lane;
+                            sphere_lanes |= 1 << lane;
                         }
                     }
                 }
-                b.tri = TrianglePacket::new(&tris);
-                blocks.push(b);
-            }
-        }
-        Self {
-            blocks,
-            first_block,
+                Block {
+                    tri: TrianglePacket::new(&tris),
+                    tri_lanes,
+                    sphere_lanes,
+                }
+            })
+            .collect();
+        Self { blocks }
+    }
+
+    /// Starts loading the blocks of slots `first .. first + count` (a leaf
+    /// the traversal will visit later) into cache.
+    #[inline(always)]
+    pub fn prefetch(&self, first: u32, count: u32) {
+        let start = (first / 4) as usize;
+        for b in &self.blocks[start..start + count.div_ceil(4) as usize] {
+            prefetch(&b.tri.rows[0]);
+            prefetch(&b.tri.rows[4]);
+            prefetch(&b.tri_lanes);
         }
     }
 
     /// Bytes held.
     pub fn bytes(&self) -> usize {
-        self.blocks.len() * std::mem::size_of::<Block>() + self.first_block.len() * 4
+        self.blocks.len() * std::mem::size_of::<Block>()
     }
 
     /// Closest hit among slots `first .. first + count` before `t_max`.
@@ -99,7 +104,7 @@ impl LeafBlocks {
         t_max: f32,
         out: &mut LeafHit,
     ) -> Option<(u32, f32)> {
-        let start = self.first_block[first as usize] as usize;
+        let start = (first / 4) as usize;
         let mut best: Option<(u32, f32)> = None;
         let mut t_best = t_max;
         for (k, b) in self.blocks[start..start + count.div_ceil(4) as usize]
@@ -133,17 +138,24 @@ impl LeafBlocks {
     /// True if any primitive in slots `first .. first + count` is hit before `t_max`.
     #[inline(always)]
     pub fn any(&self, first: u32, count: u32, ray: &Ray, tr4: &TriangleRay4, t_max: f32) -> bool {
-        let start = self.first_block[first as usize] as usize;
+        let start = (first / 4) as usize;
         self.blocks[start..start + count.div_ceil(4) as usize]
             .iter()
             .any(|b| {
-                (b.tri_lanes != 0 && intersect_triangle4(tr4, &b.tri, b.tri_lanes, t_max).is_some())
-                    || (0..4)
-                        .filter(|l| b.sphere_lanes & (1 << l) != 0)
-                        .any(|lane| {
-                            let [c, r, _] = b.tri.triangle(lane);
-                            intersect_sphere(ray.origin, ray.dir, c, r.x, t_max).is_some()
-                        })
+                (b.tri_lanes != 0 && occluded_triangle4(tr4, &b.tri, b.tri_lanes, t_max))
+                    || (b.sphere_lanes != 0 && any_sphere(b, ray, t_max))
             })
     }
+}
+
+/// Whether a sphere lane of `b` is hit before `t_max` (kept out of line:
+/// most scenes have no spheres).
+#[inline(never)]
+fn any_sphere(b: &Block, ray: &Ray, t_max: f32) -> bool {
+    (0..4)
+        .filter(|l| b.sphere_lanes & (1 << l) != 0)
+        .any(|lane| {
+            let [c, r, _] = b.tri.triangle(lane);
+            intersect_sphere(ray.origin, ray.dir, c, r.x, t_max).is_some()
+        })
 }

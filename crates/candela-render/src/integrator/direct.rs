@@ -104,7 +104,7 @@ pub fn estimate_direct(
         let light = lights.get(index);
         let mis =
             (mode == LightingMode::Mis && light.is_hittable()).then_some(light_samples as f32);
-        if let Some(sample) = light.sample_li(hit.p, u) {
+        if let Some(sample) = lights.sample_li(index, hit.p, u) {
             let mut s = sample;
             s.pdf *= pmf;
             sum += sample_contribution(scene, hit, frame, bsdf, wo, s, mis, ctx);

@@ -187,7 +187,7 @@ fn emitter_weight(
                 return 1.0;
             };
             let light_pdf =
-                scene.lights.pmf(index) * scene.lights.get(index).pdf_li(prev.p, ray.dir, hit.p);
+                scene.lights.pmf(index) * scene.lights.pdf_li(index, prev.p, ray.dir, hit.p);
             bsdf_hit_weight(prev.bsdf_pdf, light_pdf, settings.light_samples)
         }
     }

@@ -67,6 +67,12 @@ impl AreaLight {
     }
 
     pub(super) fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        self.sample_li_with_area(p, u, self.shape.area())
+    }
+
+    /// [`AreaLight::sample_li`] given `area = self.shape.area()`, which a
+    /// caller sampling the light many times computes once.
+    pub(super) fn sample_li_with_area(&self, p: Vec3, u: Vec2, area: f32) -> Option<LightSample> {
         let (q, normal) = match &self.shape {
             AreaShape::Triangle { v, normal } => {
                 let b = square_to_uniform_triangle(u);
@@ -92,7 +98,7 @@ impl AreaLight {
             wi,
             l: self.radiance,
             distance,
-            pdf: dist2 / (cos_light * self.shape.area()),
+            pdf: dist2 / (cos_light * area),
         })
     }
 
@@ -125,6 +131,11 @@ impl AreaLight {
     }
 
     pub(super) fn pdf_li(&self, p: Vec3, wi: Vec3, p_light: Vec3) -> f32 {
+        self.pdf_li_with_area(p, wi, p_light, self.shape.area())
+    }
+
+    /// [`AreaLight::pdf_li`] given `area = self.shape.area()`.
+    pub(super) fn pdf_li_with_area(&self, p: Vec3, wi: Vec3, p_light: Vec3, area: f32) -> f32 {
         let normal = match &self.shape {
             AreaShape::Triangle { normal, .. } | AreaShape::Rect { normal, .. } => *normal,
             AreaShape::Sphere { center, radius } => {
@@ -142,7 +153,7 @@ impl AreaLight {
         if cos_light <= 0.0 {
             return 0.0;
         }
-        (p_light - p).length_squared() / (cos_light * self.shape.area())
+        (p_light - p).length_squared() / (cos_light * area)
     }
 
     pub(super) fn power(&self) -> f32 {

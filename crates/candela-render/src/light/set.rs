@@ -1,6 +1,7 @@
 //! All the lights of a scene, and how one is chosen for a light sample.
 
-use super::Light;
+use super::{Light, LightSample};
+use glam::{Vec2, Vec3};
 
 const NONE: u32 = u32::MAX;
 
@@ -19,6 +20,9 @@ pub struct LightSet {
     pmf: Vec<f32>,
     /// Light index of each emissive primitive, `NONE` for the others.
     prim_light: Vec<u32>,
+    /// Surface area per light (0 for lights without one), computed once
+    /// instead of per light sample.
+    area: Vec<f32>,
 }
 
 impl LightSet {
@@ -54,7 +58,15 @@ impl LightSet {
             running += w / total;
             cdf.push(running);
         }
+        let area = lights
+            .iter()
+            .map(|l| match l {
+                Light::Area(a) => a.shape.area(),
+                _ => 0.0,
+            })
+            .collect();
         Self {
+            area,
             lights,
             delta,
             infinite,
@@ -120,13 +132,28 @@ impl LightSet {
     pub fn get(&self, i: u32) -> &Light {
         &self.lights[i as usize]
     }
+
+    /// `get(i).sample_li(p, u)`, with the area of an area light precomputed.
+    pub fn sample_li(&self, i: u32, p: Vec3, u: Vec2) -> Option<LightSample> {
+        match &self.lights[i as usize] {
+            Light::Area(a) => a.sample_li_with_area(p, u, self.area[i as usize]),
+            light => light.sample_li(p, u),
+        }
+    }
+
+    /// `get(i).pdf_li(p, wi, p_light)`, with the area of an area light precomputed.
+    pub fn pdf_li(&self, i: u32, p: Vec3, wi: Vec3, p_light: Vec3) -> f32 {
+        match &self.lights[i as usize] {
+            Light::Area(a) => a.pdf_li_with_area(p, wi, p_light, self.area[i as usize]),
+            light => light.pdf_li(p, wi, p_light),
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::light::{AmbientLight, PointLight};
-    use glam::Vec3;
+    use crate::light::{AmbientLight, AreaLight, AreaShape, PointLight};
 
     #[test]
     fn lights_are_chosen_in_proportion_to_power() {
@@ -149,5 +176,35 @@ mod tests {
             .filter(|k| set.choose((*k as f32 + 0.5) / n as f32).unwrap().0 == 2)
             .count();
         assert_eq!(picks_of_2, 750);
+    }
+
+    /// The set's samples and densities, with the area cached, are the
+    /// light's own, bit for bit.
+    #[test]
+    fn cached_area_gives_the_lights_own_samples() {
+        let v = [
+            Vec3::new(0.0, 2.0, 0.0),
+            Vec3::new(1.0, 2.0, 0.3),
+            Vec3::new(0.2, 2.1, 1.0),
+        ];
+        let normal = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
+        let tri = Light::Area(AreaLight {
+            shape: AreaShape::Triangle { v, normal },
+            radiance: Vec3::ONE,
+        });
+        let set = LightSet::new(vec![tri.clone()], vec![], 1.0);
+        let mut hits = 0;
+        for k in 0..64 {
+            let u = Vec2::new((k % 8) as f32 / 8.0 + 0.03, (k / 8) as f32 / 8.0 + 0.05);
+            let p = Vec3::new(0.1 * k as f32 - 3.0, -1.0, 0.5);
+            let want = tri.sample_li(p, u);
+            assert_eq!(set.sample_li(0, p, u), want);
+            if let Some(s) = want {
+                let q = p + s.wi * s.distance;
+                assert_eq!(set.pdf_li(0, p, s.wi, q), tri.pdf_li(p, s.wi, q));
+                hits += 1;
+            }
+        }
+        assert!(hits > 32, "{hits}");
     }
 }

@@ -3,10 +3,11 @@
 //!
 //! Every lane performs exactly the scalar test's operations in the same
 //! order, so results (and watertightness) are bit-identical to
-//! [`super::intersect_triangle`]; only the `t` error bound, needed for lanes
-//! that pass every other test, is computed per lane.
+//! [`super::intersect_triangle`]; the `t` error bound, needed only for lanes
+//! that pass every other test, is computed for all lanes once any does.
 
-use super::triangle::{t_error_bound, TriangleHit, TriangleRay};
+use super::surface::gamma;
+use super::triangle::{TriangleHit, TriangleRay};
 use candela_bvh::simd::F32x4;
 use glam::Vec3;
 
@@ -67,15 +68,20 @@ impl TriangleRay4 {
     }
 }
 
-/// Closest hit among the lanes in `lanes` (a bit mask) with `t` in
-/// `(0, t_max)`: the lane and the hit.
+/// The lanes of `lanes` (a bit mask) hit with `t` in `(0, t_max)`, with
+/// each lane's `t`, barycentric numerators and `1 / det`.
+struct LaneHits {
+    valid: u32,
+    t: F32x4,
+    e1: F32x4,
+    e2: F32x4,
+    inv_det: F32x4,
+}
+
+/// The scalar test's operations on four lanes; the `t` error bound is
+/// computed for all lanes at once, only when some lane is still in range.
 #[inline(always)]
-pub fn intersect_triangle4(
-    ray: &TriangleRay4,
-    p: &TrianglePacket,
-    lanes: u32,
-    t_max: f32,
-) -> Option<(usize, TriangleHit)> {
+fn hit_lanes(ray: &TriangleRay4, p: &TrianglePacket, lanes: u32, t_max: f32) -> Option<LaneHits> {
     let [kx, ky, kz] = ray.axes;
     let [sx, sy, sz] = ray.shear;
     let vertex = |v: usize| {
@@ -103,37 +109,70 @@ pub fn intersect_triangle4(
     let inv_det = F32x4::splat(1.0) / det;
     let t = t_scaled * inv_det;
     valid &= t.lt_mask(F32x4::splat(t_max)) & zero.lt_mask(t);
-    let mut best: Option<(usize, f32)> = None;
-    let ta = t.to_array();
+    if valid == 0 {
+        return None;
+    }
+    // `t_error_bound` lane-wise, operation for operation.
+    let max3 = |a: F32x4, b: F32x4, c: F32x4| a.abs().max(b.abs()).max(c.abs());
+    let max_z = max3(z0, z1, z2);
+    let max_x = max3(x0, x1, x2);
+    let max_y = max3(y0, y1, y2);
+    let [g2, g3, g5] = [gamma(2), gamma(3), gamma(5)].map(F32x4::splat);
+    let delta_x = g5 * (max_x + max_z);
+    let delta_y = g5 * (max_y + max_z);
+    let delta_z = g3 * max_z;
+    let delta_e = F32x4::splat(2.0) * (g2 * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    let max_e = max3(e0, e1, e2);
+    let bound = F32x4::splat(3.0)
+        * (g3 * max_e * max_z + delta_e * max_z + delta_z * max_e)
+        * inv_det.abs();
+    valid &= bound.lt_mask(t);
+    (valid != 0).then_some(LaneHits {
+        valid,
+        t,
+        e1,
+        e2,
+        inv_det,
+    })
+}
+
+/// Closest hit among the lanes in `lanes` (a bit mask) with `t` in
+/// `(0, t_max)`: the lane and the hit.
+#[inline(always)]
+pub fn intersect_triangle4(
+    ray: &TriangleRay4,
+    p: &TrianglePacket,
+    lanes: u32,
+    t_max: f32,
+) -> Option<(usize, TriangleHit)> {
+    let h = hit_lanes(ray, p, lanes, t_max)?;
+    let ta = h.t.to_array();
+    let mut valid = h.valid;
+    let mut lane = valid.trailing_zeros() as usize;
+    valid &= valid - 1;
     while valid != 0 {
-        let lane = valid.trailing_zeros() as usize;
+        let l = valid.trailing_zeros() as usize;
         valid &= valid - 1;
-        if best.is_some_and(|(_, bt)| ta[lane] >= bt) {
-            continue;
-        }
-        let l = |v: F32x4| v.to_array()[lane];
-        // The bound reads only x and y of the points; z comes separately.
-        let pts = [
-            Vec3::new(l(x0), l(y0), 0.0),
-            Vec3::new(l(x1), l(y1), 0.0),
-            Vec3::new(l(x2), l(y2), 0.0),
-        ];
-        let z = Vec3::new(l(z0), l(z1), l(z2));
-        let bound = t_error_bound(&pts, z, [l(e0), l(e1), l(e2)], l(inv_det));
-        if ta[lane] > bound {
-            best = Some((lane, ta[lane]));
+        if ta[l] < ta[lane] {
+            lane = l;
         }
     }
-    let (lane, t) = best?;
-    let inv = inv_det.to_array()[lane];
+    let inv = h.inv_det.to_array()[lane];
     Some((
         lane,
         TriangleHit {
-            t,
-            b1: e1.to_array()[lane] * inv,
-            b2: e2.to_array()[lane] * inv,
+            t: ta[lane],
+            b1: h.e1.to_array()[lane] * inv,
+            b2: h.e2.to_array()[lane] * inv,
         },
     ))
+}
+
+/// Whether any lane in `lanes` is hit with `t` in `(0, t_max)`: the
+/// shadow-ray test, which needs no closest lane.
+#[inline(always)]
+pub fn occluded_triangle4(ray: &TriangleRay4, p: &TrianglePacket, lanes: u32, t_max: f32) -> bool {
+    hit_lanes(ray, p, lanes, t_max).is_some()
 }
 
 #[cfg(test)]
@@ -143,7 +182,8 @@ mod tests {
     use super::*;
 
     /// The packet agrees with the scalar test bit for bit: same lane chosen
-    /// as the closest scalar hit, same t and barycentrics.
+    /// as the closest scalar hit, same t and barycentrics; the shadow test
+    /// agrees with whether the scalar test hits at all.
     #[test]
     fn packet_matches_scalar() {
         let mut rng = Rng(41);
@@ -173,6 +213,8 @@ mod tests {
             }
             let packet = TrianglePacket::new(&tris);
             let got = intersect_triangle4(&TriangleRay4::new(&tr), &packet, (1 << n) - 1, t_max);
+            let blocked = occluded_triangle4(&TriangleRay4::new(&tr), &packet, (1 << n) - 1, t_max);
+            assert_eq!(blocked, want.is_some());
             assert_eq!(got.map(|g| g.1), want.map(|w| w.1));
             if let (Some(g), Some(w)) = (got, want) {
                 assert!(g.0 == w.0 || tris[g.0] == tris[w.0] || g.1.t == w.1.t);
