@@ -121,7 +121,7 @@ pub struct RenderArgs {
           value_parser = clap::value_parser!(u8).range(0..=1))]
     pub accumulate: u8,
 
-    /// Direct lighting by uniform hemisphere sampling (no light sampling).
+    /// Direct lighting by uniform hemisphere sampling: -l rays per vertex (CS184), no light sampling.
     #[arg(short = 'H', long = "hemisphere", conflicts_with = "light_only")]
     pub hemisphere: bool,
 

@@ -11,6 +11,7 @@ use super::ThreadContext;
 use crate::bsdf::Bsdf;
 use crate::geometry::{Frame, Ray};
 use crate::light::LightSample;
+use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
 use crate::sampling::Sampler;
 use crate::scene::{Scene, SurfaceHit};
 use glam::{Vec2, Vec3};
@@ -35,7 +36,10 @@ pub fn power_heuristic(nf: f32, f_pdf: f32, ng: f32, g_pdf: f32) -> f32 {
 /// How a vertex gathers direct light.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LightingMode {
-    /// No light sampling: emitters are found by (hemisphere) BSDF rays only.
+    /// CS184's `-H`: direct light from `n` rays in uniformly sampled
+    /// hemisphere directions at each vertex (the emitters they hit, and
+    /// the sky); no light sampling, so point and directional lights stay
+    /// dark.
     Hemisphere,
     /// Light sampling only; BSDF rays do not count the emitters they hit.
     Light,
@@ -66,10 +70,11 @@ pub fn unoccluded(
     !scene.occluded(&ray, &mut ctx.rays.traversal)
 }
 
-/// Light-sampled direct radiance reflected toward `hit.wo`:
-/// `light_samples` samples of the non-delta lights (chosen by power) plus one
-/// sample of each delta light, each weighted for MIS when `mode` is
-/// [`LightingMode::Mis`].
+/// Direct radiance reflected toward `hit.wo`. Light sampling: `light_samples`
+/// samples of the non-delta lights (chosen by power) plus one sample of each
+/// delta light, each weighted for MIS when `mode` is [`LightingMode::Mis`].
+/// Hemisphere mode: `light_samples` uniform hemisphere rays (CS184's `-H`
+/// with `-l`).
 #[allow(clippy::too_many_arguments)]
 pub fn estimate_direct(
     scene: &Scene,
@@ -81,6 +86,9 @@ pub fn estimate_direct(
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
 ) -> Vec3 {
+    if mode == LightingMode::Hemisphere {
+        return estimate_hemisphere(scene, hit, frame, bsdf, light_samples, sampler, ctx);
+    }
     let lights = &scene.lights;
     let wo = frame.to_local(hit.wo);
     let mut total = Vec3::ZERO;
@@ -111,6 +119,51 @@ pub fn estimate_direct(
         }
     }
     total + sum / light_samples as f32
+}
+
+/// CS184's uniform hemisphere estimate of direct light: `samples` rays in
+/// uniform directions over the hemisphere on the viewer's side, each adding
+/// the emission it finds (an emitter's front face, or the lights at
+/// infinity when it escapes) times `f · |cos| / pdf`.
+fn estimate_hemisphere(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    frame: &Frame,
+    bsdf: &Bsdf,
+    samples: u32,
+    sampler: &mut Sampler,
+    ctx: &mut ThreadContext,
+) -> Vec3 {
+    if samples == 0 {
+        return Vec3::ZERO;
+    }
+    let wo = frame.to_local(hit.wo);
+    let mut sum = Vec3::ZERO;
+    for _ in 0..samples {
+        let local = square_to_uniform_hemisphere(sampler.next_2d());
+        let pdf = uniform_hemisphere_pdf(local);
+        // The frame is not flipped toward the viewer (dielectrics need its
+        // side), so take the hemisphere wo lies in.
+        let wi_local = if wo.z < 0.0 { -local } else { local };
+        let f = bsdf.f(wo, wi_local);
+        let wi = frame.to_world(wi_local);
+        if f == Vec3::ZERO || wi.dot(hit.ng) <= 0.0 {
+            continue;
+        }
+        let ray = Ray::new(hit.spawn_origin(wi), wi);
+        ctx.rays.shadow += 1;
+        let le = match scene.intersect(&ray, &mut ctx.rays.traversal) {
+            Some(h) if h.front_face => scene.material(h.material).emission.unwrap_or(Vec3::ZERO),
+            Some(_) => Vec3::ZERO,
+            None => scene
+                .lights
+                .infinite_lights()
+                .map(|i| scene.lights.get(i).le(wi))
+                .sum(),
+        };
+        sum += f * le * (wi_local.z.abs() / pdf);
+    }
+    sum / samples as f32
 }
 
 /// `f · L · |cos| / pdf` for one light sample, times its MIS weight when

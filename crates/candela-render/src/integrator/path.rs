@@ -13,7 +13,6 @@ use super::direct::{bsdf_hit_weight, estimate_direct, LightingMode};
 use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::{Frame, Ray};
-use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
 use crate::sampling::Sampler;
 use crate::scene::{Scene, SurfaceHit};
 use glam::Vec3;
@@ -91,10 +90,7 @@ pub fn path_radiance(
             break; // a pure emitter absorbs
         };
         let frame = Frame::from_normal(hit.ns);
-        if settings.lighting != LightingMode::Hemisphere
-            && !bsdf.flags().is_specular()
-            && settings.bounces.contains(&(depth + 1))
-        {
+        if !bsdf.flags().is_specular() && settings.bounces.contains(&(depth + 1)) {
             l += beta
                 * estimate_direct(
                     scene,
@@ -107,7 +103,7 @@ pub fn path_radiance(
                     ctx,
                 );
         }
-        let Some(s) = sample_direction(&bsdf, &frame, &hit, settings.lighting, sampler) else {
+        let Some(s) = sample_direction(&bsdf, &frame, &hit, sampler) else {
             break;
         };
         let wi = frame.to_world(s.wi);
@@ -140,31 +136,17 @@ pub fn path_radiance(
     l
 }
 
-/// The next direction: the BSDF's own sampling, or for CS184's `-H`, a
-/// uniform direction over the hemisphere at non-specular vertices.
+/// The next direction, by the BSDF's own importance sampling (in every
+/// lighting mode, as CS184 continues its paths).
 fn sample_direction(
     bsdf: &Bsdf,
     frame: &Frame,
     hit: &SurfaceHit,
-    lighting: LightingMode,
     sampler: &mut Sampler,
 ) -> Option<BsdfSample> {
     let wo = frame.to_local(hit.wo);
     let u1 = sampler.next_1d();
     let u2 = sampler.next_2d();
-    if lighting == LightingMode::Hemisphere && !bsdf.flags().is_specular() {
-        // The hemisphere on the viewer's side of the (unflipped) frame.
-        let local = square_to_uniform_hemisphere(u2);
-        let pdf = uniform_hemisphere_pdf(local);
-        let wi = if wo.z < 0.0 { -local } else { local };
-        let f = bsdf.f(wo, wi);
-        return Some(BsdfSample {
-            wi,
-            f,
-            pdf,
-            flags: bsdf.flags(),
-        });
-    }
     bsdf.sample(wo, u1, u2).filter(|s| s.pdf > 0.0)
 }
 
@@ -180,8 +162,9 @@ fn emitter_weight(
         return 1.0; // seen by the camera or through a mirror: only this path finds it
     };
     match settings.lighting {
-        LightingMode::Hemisphere => 1.0,
-        LightingMode::Light => 0.0,
+        // The vertex's direct-lighting estimate (hemisphere rays or light
+        // samples) already counted this emitter.
+        LightingMode::Hemisphere | LightingMode::Light => 0.0,
         LightingMode::Mis => {
             let Some(index) = scene.lights.light_of_prim(hit.prim) else {
                 return 1.0;
@@ -196,8 +179,8 @@ fn emitter_weight(
 /// Radiance of the lights at infinity (ambient sky, environment map) seen
 /// along an escaping ray, each weighted for MIS like emission found by
 /// the path: full weight when only this path could find it (camera rays,
-/// specular bounces, hemisphere mode), none in light-only mode (light
-/// sampling counted it), the power heuristic under MIS.
+/// specular bounces), none in the hemisphere and light-only modes (the
+/// vertex's direct estimate counted it), the power heuristic under MIS.
 fn escaped_radiance(
     scene: &Scene,
     ray: &Ray,
@@ -214,8 +197,7 @@ fn escaped_radiance(
         let weight = match prev.filter(|p| !p.specular) {
             None => 1.0,
             Some(prev) => match settings.lighting {
-                LightingMode::Hemisphere => 1.0,
-                LightingMode::Light => 0.0,
+                LightingMode::Hemisphere | LightingMode::Light => 0.0,
                 LightingMode::Mis => {
                     let light_pdf =
                         scene.lights.pmf(index) * light.pdf_li(prev.p, ray.dir, Vec3::ZERO);
