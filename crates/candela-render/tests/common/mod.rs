@@ -15,70 +15,11 @@ use candela_scene::{
 use glam::{Mat4, Vec3};
 
 /// A unit icosphere subdivided `levels` times, its triangles wound so that
-/// the geometric normals point **inward**, with inward per-vertex normals:
-/// a closed room whose walls face its centre.
+/// the geometric normals point **inward**: a closed room whose walls face
+/// its centre.
 pub fn inward_icosphere(levels: u32, radius: f32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let t = (1.0 + 5f32.sqrt()) / 2.0;
-    let mut v: Vec<Vec3> = [
-        (-1.0, t, 0.0),
-        (1.0, t, 0.0),
-        (-1.0, -t, 0.0),
-        (1.0, -t, 0.0),
-        (0.0, -1.0, t),
-        (0.0, 1.0, t),
-        (0.0, -1.0, -t),
-        (0.0, 1.0, -t),
-        (t, 0.0, -1.0),
-        (t, 0.0, 1.0),
-        (-t, 0.0, -1.0),
-        (-t, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
-    .collect();
-    let mut f: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..levels {
-        let mut cache = std::collections::HashMap::new();
-        let mut mid = |a: u32, b: u32, v: &mut Vec<Vec3>| {
-            let key = (a.min(b), a.max(b));
-            *cache.entry(key).or_insert_with(|| {
-                v.push((v[a as usize] + v[b as usize]).normalize());
-                v.len() as u32 - 1
-            })
-        };
-        let mut next = Vec::with_capacity(f.len() * 4);
-        for [a, b, c] in f {
-            let ab = mid(a, b, &mut v);
-            let bc = mid(b, c, &mut v);
-            let ca = mid(c, a, &mut v);
-            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        f = next;
-    }
-    // The faces above wind outward; swap two corners to face inward.
-    let tris = f.into_iter().map(|[a, b, c]| [a, c, b]).collect();
-    (v.into_iter().map(|p| p * radius).collect(), tris)
+    let (v, f) = candela_render::shape::icosphere(levels, Vec3::ZERO, radius);
+    (v, f.into_iter().map(|[a, b, c]| [a, c, b]).collect())
 }
 
 /// A material description.
