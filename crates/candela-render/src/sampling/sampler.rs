@@ -3,7 +3,7 @@
 use glam::Vec2;
 
 use super::hash::{combine, pixel_hash, unit_f32};
-use super::sobol::{owen_scramble, sobol_dim0, sobol_dim1};
+use super::sobol::{laine_karras, sobol_dim1_reversed};
 
 /// Which point set a [`Sampler`] draws from.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -31,6 +31,8 @@ pub struct Sampler {
     seed: u64,
     pixel: u64,
     index: u32,
+    /// `index` with its bits reversed, the Sobol code's working order.
+    index_reversed: u32,
     dimension: u32,
 }
 
@@ -43,6 +45,7 @@ impl Sampler {
             seed,
             pixel: pixel_hash(seed, 0, 0),
             index: 0,
+            index_reversed: 0,
             dimension: 0,
         }
     }
@@ -57,6 +60,7 @@ impl Sampler {
     pub fn start_pixel_sample(&mut self, px: u32, py: u32, index: u32) {
         self.pixel = pixel_hash(self.seed, px, py);
         self.index = index;
+        self.index_reversed = index.reverse_bits();
         self.dimension = 0;
     }
 
@@ -72,9 +76,12 @@ impl Sampler {
         match self.kind {
             SamplerKind::Independent => unit_f32(self.independent_bits(dim)),
             SamplerKind::Sobol => {
+                // owen(sobol_dim0(j), k2) with j = owen(i, k1), where
+                // owen(v, s) = rev(lk(rev(v), s)) and sobol_dim0 = rev:
+                // the value is rev(lk(j, k2)).
                 let key = combine(self.pixel, dim);
-                let index = owen_scramble(self.index, key as u32);
-                unit_f32(owen_scramble(sobol_dim0(index), (key >> 32) as u32))
+                let j = laine_karras(self.index_reversed, key as u32).reverse_bits();
+                unit_f32(laine_karras(j, (key >> 32) as u32).reverse_bits())
             }
         }
     }
@@ -90,12 +97,15 @@ impl Sampler {
                 unit_f32(self.independent_bits(dim + 1)),
             ),
             SamplerKind::Sobol => {
+                // (owen(sobol_dim0(j), k2), owen(sobol_dim1(j), k3)) with
+                // j = owen(i, k1) = rev(t): x = rev(lk(j, k2)) as in
+                // next_1d, and rev(sobol_dim1(j)) = sobol_dim1_reversed(t).
                 let key = combine(self.pixel, dim);
                 let scramble = combine(key, u32::MAX);
-                let index = owen_scramble(self.index, key as u32);
-                let x = owen_scramble(sobol_dim0(index), (key >> 32) as u32);
-                let y = owen_scramble(sobol_dim1(index), scramble as u32);
-                Vec2::new(unit_f32(x), unit_f32(y))
+                let t = laine_karras(self.index_reversed, key as u32);
+                let x = laine_karras(t.reverse_bits(), (key >> 32) as u32);
+                let y = laine_karras(sobol_dim1_reversed(t), scramble as u32);
+                Vec2::new(unit_f32(x.reverse_bits()), unit_f32(y.reverse_bits()))
             }
         }
     }

@@ -170,3 +170,35 @@ fn sobol_has_lower_error_than_independent_at_equal_spp() {
         "sobol {sobol:e} vs independent {independent:e}"
     );
 }
+
+/// The sampler composes the scrambles in reversed bit order for speed; its
+/// values must be exactly Burley's construction written out plainly:
+/// `owen(sobol_d(owen(i, k1)), k2)` per coordinate.
+#[test]
+fn sobol_values_equal_the_plain_burley_construction() {
+    use super::hash::{combine, pixel_hash, unit_f32};
+    use super::sobol::{owen_scramble, sobol_dim0, sobol_dim1};
+    let seed = 42;
+    let mut sampler = Sampler::new(SamplerKind::Sobol, seed);
+    for (px, py, index) in [(0, 0, 0), (3, 7, 1), (479, 359, 63), (12, 5, 1_000_003)] {
+        sampler.start_pixel_sample(px, py, index);
+        let pixel = pixel_hash(seed, px, py);
+        // Dimension 0 as a single value, then pairs at 1-2, 3-4, 5-6.
+        let key = combine(pixel, 0);
+        let j = owen_scramble(index, key as u32);
+        let expected = unit_f32(owen_scramble(sobol_dim0(j), (key >> 32) as u32));
+        assert_eq!(sampler.next_1d().to_bits(), expected.to_bits());
+        for dim in [1u32, 3, 5] {
+            let key = combine(pixel, dim);
+            let scramble = combine(key, u32::MAX);
+            let j = owen_scramble(index, key as u32);
+            let x = unit_f32(owen_scramble(sobol_dim0(j), (key >> 32) as u32));
+            let y = unit_f32(owen_scramble(sobol_dim1(j), scramble as u32));
+            let got = sampler.next_2d();
+            assert_eq!(
+                (got.x.to_bits(), got.y.to_bits()),
+                (x.to_bits(), y.to_bits())
+            );
+        }
+    }
+}

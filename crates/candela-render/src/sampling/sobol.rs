@@ -8,28 +8,54 @@
 //! each one keeps the stratification of a (0, m, 2)-net for every prefix of
 //! `2^m` samples.
 
-/// Sobol dimension 0: the van der Corput radical inverse in base 2.
+/// Sobol dimension 0: the van der Corput radical inverse in base 2. The
+/// sampler works in reversed bit order, where this is the identity; kept as
+/// the reference the tests compare against.
+#[cfg(test)]
 pub(crate) fn sobol_dim0(index: u32) -> u32 {
     index.reverse_bits()
 }
 
 /// Sobol dimension 1, whose generator matrix is Pascal's triangle modulo 2:
 /// each direction number is the previous one xor-ed with itself shifted by
-/// one bit (primitive polynomial x + 1).
+/// one bit (primitive polynomial x + 1). The reference for
+/// [`sobol_dim1_reversed`], bit by bit.
+#[cfg(test)]
 pub(crate) fn sobol_dim1(index: u32) -> u32 {
-    let t = &DIM1_TABLES;
-    t[0][(index & 255) as usize]
-        ^ t[1][((index >> 8) & 255) as usize]
-        ^ t[2][((index >> 16) & 255) as usize]
-        ^ t[3][(index >> 24) as usize]
+    let mut direction = 1u32 << 31;
+    let mut result = 0;
+    let mut rest = index;
+    while rest != 0 {
+        if rest & 1 != 0 {
+            result ^= direction;
+        }
+        rest >>= 1;
+        direction ^= direction >> 1;
+    }
+    result
 }
 
-/// The second dimension's generator matrix applied a byte at a time: the
-/// bit-by-bit loop it replaces had a data-dependent branch per index bit and
-/// was the single largest cost of sampling in a render profile.
-const DIM1_TABLES: [[u32; 256]; 4] = dim1_tables();
+/// Sobol dimension 1 in bit-reversed coordinates:
+/// `sobol_dim1_reversed(i.reverse_bits()) == sobol_dim1(i).reverse_bits()`.
+/// The sampler composes scrambles in reversed order, where the Owen scramble
+/// is a plain hash, so it needs no bit reversal between the steps.
+pub(crate) fn sobol_dim1_reversed(reversed_index: u32) -> u32 {
+    let t = &DIM1_REVERSED_TABLES;
+    let r = reversed_index;
+    t[0][(r & 255) as usize]
+        ^ t[1][((r >> 8) & 255) as usize]
+        ^ t[2][((r >> 16) & 255) as usize]
+        ^ t[3][(r >> 24) as usize]
+}
 
-const fn dim1_tables() -> [[u32; 256]; 4] {
+/// The generator matrix applied a byte at a time (a bit-by-bit loop has a
+/// data-dependent branch per index bit and was the largest cost of sampling
+/// in a render profile), with inputs and outputs bit-reversed: bit `b` of
+/// the reversed index is bit `31 - b` of the index, and contributes the
+/// reversed direction number of that bit.
+const DIM1_REVERSED_TABLES: [[u32; 256]; 4] = dim1_reversed_tables();
+
+const fn dim1_reversed_tables() -> [[u32; 256]; 4] {
     let mut dirs = [0u32; 32];
     let mut d = 1u32 << 31;
     let mut i = 0;
@@ -43,11 +69,11 @@ const fn dim1_tables() -> [[u32; 256]; 4] {
     while k < 4 {
         let mut b = 0;
         while b < 256 {
-            let mut x = 0;
+            let mut x = 0u32;
             let mut j = 0;
             while j < 8 {
                 if b & (1 << j) != 0 {
-                    x ^= dirs[8 * k + j];
+                    x ^= dirs[31 - (8 * k + j)].reverse_bits();
                 }
                 j += 1;
             }
@@ -59,21 +85,30 @@ const fn dim1_tables() -> [[u32; 256]; 4] {
     t
 }
 
-/// Owen scrambling of a 32-bit binary fraction, keyed by `seed`.
+/// The Laine–Karras hash at the heart of [`owen_scramble`], acting on a
+/// bit-reversed value: each output bit depends only on less significant
+/// input bits.
+#[inline(always)]
+pub(crate) fn laine_karras(reversed: u32, seed: u32) -> u32 {
+    let mut x = reversed.wrapping_add(seed);
+    x ^= x.wrapping_mul(0x6c50_b47c);
+    x ^= x.wrapping_mul(0xb82f_1e52);
+    x ^= x.wrapping_mul(0xc7af_e638);
+    x ^= x.wrapping_mul(0x8d22_f6e6);
+    x
+}
+
+/// Owen scrambling of a 32-bit binary fraction, keyed by `seed` (the
+/// sampler composes [`laine_karras`] directly; this is the reference form).
 ///
 /// In bit-reversed order, adding the seed and xor-ing in even multiples of
 /// the value only lets each bit depend on less significant ones; reversed
 /// back, each bit is flipped by a function of the bits *above* it, which is
 /// the definition of a nested uniform scramble. The multipliers are the ones
 /// Burley (2020) tuned for a good avalanche.
+#[cfg(test)]
 pub(crate) fn owen_scramble(value: u32, seed: u32) -> u32 {
-    let mut x = value.reverse_bits();
-    x = x.wrapping_add(seed);
-    x ^= x.wrapping_mul(0x6c50_b47c);
-    x ^= x.wrapping_mul(0xb82f_1e52);
-    x ^= x.wrapping_mul(0xc7af_e638);
-    x ^= x.wrapping_mul(0x8d22_f6e6);
-    x.reverse_bits()
+    laine_karras(value.reverse_bits(), seed).reverse_bits()
 }
 
 #[cfg(test)]
@@ -109,6 +144,21 @@ mod tests {
         for k in 1..32 {
             let prev = sobol_dim1(1 << (k - 1));
             assert_eq!(sobol_dim1(1 << k), prev ^ (prev >> 1), "direction {k}");
+        }
+    }
+
+    #[test]
+    fn reversed_dimension_1_is_dimension_1_reversed() {
+        let mut x = 0x2545_f491u32;
+        for _ in 0..10_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            assert_eq!(
+                sobol_dim1_reversed(x.reverse_bits()),
+                sobol_dim1(x).reverse_bits(),
+                "index {x:#x}"
+            );
         }
     }
 
