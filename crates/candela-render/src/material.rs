@@ -46,12 +46,7 @@ impl Material {
                 roughness,
                 ior,
             } => {
-                if roughness > 0.0 {
-                    unsupported.push(Unsupported(format!(
-                        "material '{}': rough glass (roughness {roughness}; rendered smooth)",
-                        desc.name
-                    )));
-                }
+                unsupported.extend(rendered_smooth(desc, "glass", roughness));
                 Some(Bsdf::Glass {
                     reflectance,
                     transmittance,
@@ -63,12 +58,7 @@ impl Material {
                 roughness,
                 ior,
             } => {
-                if roughness > 0.0 {
-                    unsupported.push(Unsupported(format!(
-                        "material '{}': rough refraction (roughness {roughness}; rendered smooth)",
-                        desc.name
-                    )));
-                }
+                unsupported.extend(rendered_smooth(desc, "refraction", roughness));
                 Some(Bsdf::Refraction { transmittance, ior })
             }
             BsdfDesc::Microfacet { alpha, eta, k } => Some(Bsdf::Microfacet { alpha, eta, k }),
@@ -107,4 +97,14 @@ impl Material {
             _ => self.bsdf,
         }
     }
+}
+
+/// Rough dielectrics are not implemented: they render smooth, and say so.
+fn rendered_smooth(desc: &MaterialDesc, kind: &str, roughness: f32) -> Option<Unsupported> {
+    (roughness > 0.0).then(|| {
+        Unsupported(format!(
+            "material '{}': rough {kind} (roughness {roughness}; rendered smooth)",
+            desc.name
+        ))
+    })
 }

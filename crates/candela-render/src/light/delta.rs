@@ -18,23 +18,29 @@ pub struct PointLight {
 
 impl PointLight {
     pub(super) fn sample_li(&self, p: Vec3) -> Option<LightSample> {
-        let d = self.position - p;
-        let dist2 = d.length_squared();
-        if dist2 == 0.0 {
-            return None;
-        }
-        let distance = dist2.sqrt();
-        Some(LightSample {
-            wi: d / distance,
-            l: self.intensity / dist2,
-            distance,
-            pdf: 1.0,
-        })
+        toward_point(self.position, self.intensity, p)
     }
 
     pub(super) fn power(&self) -> f32 {
         4.0 * PI * luminance(self.intensity)
     }
+}
+
+/// Light from an isotropic point of intensity `intensity` arriving at `p`:
+/// the inverse-square law every point-like light shares.
+fn toward_point(position: Vec3, intensity: Vec3, p: Vec3) -> Option<LightSample> {
+    let d = position - p;
+    let dist2 = d.length_squared();
+    if dist2 == 0.0 {
+        return None;
+    }
+    let distance = dist2.sqrt();
+    Some(LightSample {
+        wi: d / distance,
+        l: intensity / dist2,
+        distance,
+        pdf: 1.0,
+    })
 }
 
 /// A point light restricted to a cone around `direction`, with intensity
@@ -55,14 +61,8 @@ pub struct SpotLight {
 
 impl SpotLight {
     pub(super) fn sample_li(&self, p: Vec3) -> Option<LightSample> {
-        let d = self.position - p;
-        let dist2 = d.length_squared();
-        if dist2 == 0.0 {
-            return None;
-        }
-        let distance = dist2.sqrt();
-        let wi = d / distance;
-        let cos = (-wi).dot(self.direction);
+        let mut sample = toward_point(self.position, self.intensity, p)?;
+        let cos = (-sample.wi).dot(self.direction);
         if cos < self.cos_cutoff {
             return None;
         }
@@ -71,12 +71,8 @@ impl SpotLight {
         } else {
             1.0
         };
-        Some(LightSample {
-            wi,
-            l: self.intensity * falloff / dist2,
-            distance,
-            pdf: 1.0,
-        })
+        sample.l *= falloff;
+        Some(sample)
     }
 
     pub(super) fn power(&self) -> f32 {
