@@ -7,21 +7,19 @@
 mod args;
 mod bench;
 mod dask;
-mod output;
 mod progress;
 mod render_cmd;
 mod report;
 
-use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = args::Cli::parse();
+    let (cli, matches) = args::parse();
     let result = match cli.command {
         Some(args::Command::Bench(cmd)) => bench::run(cmd).map(|()| render_cmd::Outcome::Done),
         None => match &cli.render.dask {
-            Some(address) => dask::run(&cli.render, address),
-            None => render_cmd::run(&cli.render),
+            Some(address) => dask::run(&cli.render, &matches, address),
+            None => render_cmd::run(&cli.render, &matches),
         },
     };
     match result {

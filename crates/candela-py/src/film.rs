@@ -2,11 +2,13 @@
 
 use crate::stats::StatsRecord;
 use crate::wire::{self, PlacedFilm};
-use candela_image::{write_exr, write_png, ExrLayers, GrayImage, RgbImage, ToneMap};
-use candela_render::film::{Film, PixelSums};
-use glam::{DVec3, Vec3};
+use crate::settings::{kwargs_json, value_error};
+use candela_render::film::{write_film, Film, OutputOptions, PixelSums};
+use candela_render::settings::Settings;
+use glam::DVec3;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};
+use candela_render::film::OutputError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 use std::path::PathBuf;
@@ -32,33 +34,9 @@ fn reshape3<'py>(
     PyArray1::from_vec(py, v).reshape([h as usize, w as usize, 3])
 }
 
-/// An RGB image of `w` × `h` values (None only if the sizes disagree, which
-/// a film's own arrays never do).
-fn to_image(w: u32, h: u32, v: Vec<Vec3>) -> Option<RgbImage> {
-    RgbImage::from_pixels(
-        w as usize,
-        h as usize,
-        v.into_iter().map(|c| c.to_array()).collect(),
-    )
-    .ok()
-}
-
 impl PyFilm {
     fn size(&self) -> (u32, u32) {
         (self.inner.film.width, self.inner.film.height)
-    }
-
-    fn rgb_image(&self) -> PyResult<RgbImage> {
-        let (w, h) = self.size();
-        let pixels = self
-            .inner
-            .film
-            .resolve()
-            .into_iter()
-            .map(|c| c.to_array())
-            .collect();
-        RgbImage::from_pixels(w as usize, h as usize, pixels)
-            .map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
     /// A zero film covering the whole `width` × `height` image.
@@ -147,13 +125,7 @@ impl PyFilm {
     /// The image: mean linear radiance per pixel, float32, shape (H, W, 3).
     fn image<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
         let (w, h) = self.size();
-        let v = self
-            .inner
-            .film
-            .resolve()
-            .iter()
-            .flat_map(|c| c.to_array())
-            .collect();
+        let v = self.inner.film.resolve().into_pixels().into_iter().flatten().collect();
         reshape3(py, v, h, w)
     }
 
@@ -192,44 +164,33 @@ impl PyFilm {
 
     /// Writes the image: `.png` (tone-mapped 8-bit sRGB, as the CLI) or
     /// `.exr` (linear float; plus a `samples` layer when `samples`, and the
-    /// albedo and normal layers denoisers read when `aovs`).
-    #[pyo3(signature = (path, *, samples=false, aovs=false))]
-    fn save(&self, py: Python<'_>, path: PathBuf, samples: bool, aovs: bool) -> PyResult<()> {
-        let image = self.rgb_image()?;
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        let (w, h) = self.size();
-        let counts: Vec<f32> = self
-            .inner
-            .film
-            .pixels
-            .iter()
-            .map(|p| p.count as f32)
-            .collect();
-        py.detach(|| match ext.as_deref() {
-            Some("png") => write_png(&path, &image, &ToneMap::default())
-                .map_err(|e| PyOSError::new_err(format!("cannot write {}: {e}", path.display()))),
-            Some("exr") => {
-                let mut layers = ExrLayers::beauty(image);
-                if samples {
-                    layers.sample_count =
-                        GrayImage::from_values(w as usize, h as usize, counts).ok();
-                }
-                if aovs {
-                    layers.albedo = to_image(w, h, self.inner.film.albedo());
-                    layers.normal = to_image(w, h, self.inner.film.normal());
-                }
-                write_exr(&path, &layers).map_err(|e| {
-                    PyOSError::new_err(format!("cannot write {}: {e}", path.display()))
-                })
-            }
-            _ => Err(PyValueError::new_err(format!(
-                "{}: the file name must end in .png or .exr",
-                path.display()
-            ))),
-        })
+    /// albedo and normal layers denoisers read when `aovs`). The output
+    /// settings (`exposure`, `tone`) may be given as keywords, as to
+    /// `render`.
+    #[pyo3(signature = (path, *, samples=false, aovs=false, **settings))]
+    fn save(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        samples: bool,
+        aovs: bool,
+        settings: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<()> {
+        let output = Settings::from_json(&kwargs_json(settings)?)
+            .map_err(value_error)?
+            .output;
+        let opts = OutputOptions {
+            tone: output.tone_map(),
+            aovs,
+            sample_counts: samples,
+            rate_image: None,
+        };
+        py.detach(|| write_film(&path, &self.inner.film, &opts))
+            .map(|_| ())
+            .map_err(|e| match e {
+                OutputError::Format(_) => PyValueError::new_err(e.to_string()),
+                OutputError::Write(..) => PyOSError::new_err(e.to_string()),
+            })
     }
 
     /// Adds `other`'s sums (a part of the same image lying inside this film)

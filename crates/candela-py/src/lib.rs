@@ -41,25 +41,14 @@ fn load(py: Python<'_>, path: PathBuf, strict: bool) -> PyResult<PyScene> {
     let loaded = py
         .detach(|| candela_scene::load(&path, &opts))
         .map_err(|e| LoadError::new_err(e.to_string()))?;
-    let lines = |ws: &[candela_scene::Warning]| ws.iter().map(|w| w.to_string()).collect();
-    Ok(PyScene::new(
-        loaded.scene,
-        lines(&loaded.report.warnings),
-        lines(&loaded.report.notes),
-    ))
+    Ok(PyScene::new(loaded))
 }
 
 /// The built-in demo scene (a Cornell box with two spheres), as the CLI
 /// renders with no scene file.
 #[pyfunction]
 fn demo_scene() -> PyScene {
-    let loaded = candela_scene::demo_scene();
-    let lines = |ws: &[candela_scene::Warning]| ws.iter().map(|w| w.to_string()).collect();
-    PyScene::new(
-        loaded.scene,
-        lines(&loaded.report.warnings),
-        lines(&loaded.report.notes),
-    )
+    PyScene::new(candela_scene::demo_scene())
 }
 
 /// Adds films of one image, in the order given, into a film of the whole
@@ -102,6 +91,13 @@ fn read_image<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyArra
     PyArray1::from_vec(py, v).reshape([h, w, 3])
 }
 
+/// The help of every render setting, by name (the text of `candela
+/// --help`): what `Scene.render` takes as keywords.
+#[pyfunction]
+fn settings_help() -> std::collections::BTreeMap<String, String> {
+    settings::settings_help().into_iter().collect()
+}
+
 /// The native module; `candela/__init__.py` re-exports it.
 #[pymodule]
 fn _candela(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -112,5 +108,6 @@ fn _candela(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(demo_scene, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add_function(wrap_pyfunction!(read_image, m)?)?;
+    m.add_function(wrap_pyfunction!(settings_help, m)?)?;
     Ok(())
 }

@@ -1,198 +1,125 @@
-//! Keyword arguments of `Scene.render`, checked and turned into the
-//! library's settings. The integrator options mirror the CLI flags so that a
-//! Python render and a CLI render of the same options are the same image.
+//! Keyword arguments into the one settings description.
+//!
+//! `Scene.render(**kwargs)` passes every keyword except the two that only a
+//! Python caller splits work by (`sample_range`, `passes`) to
+//! [`Settings::resolve`] as JSON, so the keywords are the settings' own names
+//! and every setting the CLI has is a keyword here with no code of its own.
 
-use candela_bvh::BuildStrategy;
-use candela_render::camera::framing::CameraMode;
-use candela_render::film::{Adaptive, PixelRect};
-use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
-use candela_render::render::RenderSettings;
-use candela_render::sampling::SamplerKind;
-use candela_render::scene::SceneOptions;
+use candela_render::settings::{Settings, SettingsError, ADAPTIVE_HELP, CELL_HELP};
+use candela_scene::RenderHints;
 use pyo3::exceptions::PyValueError;
-use pyo3::PyResult;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use serde_json::{Map, Number, Value};
 use std::ops::Range;
 
 /// Everything one `Scene.render` call asks for, validated.
 #[derive(Clone, Debug)]
 pub struct RenderRequest {
-    /// Image size, camera and BVH: what the built scene depends on.
-    pub scene: SceneOptions,
-    /// Integrator, sampler, seed, threads, cell, adaptive sampling; the
-    /// sample range is set per pass.
-    pub settings: RenderSettings,
+    /// The render's settings (defaults < scene hints < keywords).
+    pub settings: Settings,
     /// Sample indices to render in each pixel, split into `passes`.
     pub samples: Range<u32>,
     /// Number of consecutive sample ranges, merged in order.
     pub passes: u32,
 }
 
-/// The raw keyword arguments, as Python passed them.
-pub struct RenderKwargs<'a> {
-    pub spp: u32,
-    pub max_depth: u32,
-    pub light_samples: u32,
-    pub integrator: &'a str,
-    pub lighting: &'a str,
-    pub accumulate: bool,
-    pub roulette: bool,
-    pub sampler: &'a str,
-    pub seed: u64,
-    pub width: u32,
-    pub height: u32,
-    pub camera: &'a str,
-    pub bvh: &'a str,
-    pub cell: Option<(u32, u32, u32, u32)>,
-    pub sample_range: Option<(u32, u32)>,
-    pub passes: u32,
-    pub adaptive: Option<Adaptive>,
-    pub threads: usize,
-    pub aperture: f32,
-    pub focal_distance: Option<f32>,
-    pub environment: Option<std::sync::Arc<candela_render::light::EnvironmentMap>>,
+/// A settings error as Python's `ValueError`.
+pub fn value_error(e: SettingsError) -> PyErr {
+    PyValueError::new_err(e.to_string())
 }
 
-fn bad<T>(msg: String) -> PyResult<T> {
-    Err(PyValueError::new_err(msg))
-}
-
-fn choice<T: Copy>(name: &str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
-    match options.iter().find(|(k, _)| *k == value) {
-        Some(&(_, v)) => Ok(v),
-        None => {
-            let names: Vec<_> = options.iter().map(|(k, _)| format!("{k:?}")).collect();
-            bad(format!(
-                "{name}={value:?}: expected one of {}",
-                names.join(", ")
-            ))
-        }
+/// A Python value as JSON: None, bools, ints, finite floats, strings,
+/// paths, and lists, tuples and dicts of these. `key` names the keyword in
+/// errors.
+pub fn to_json(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
+    let bad = |what: &str| PyValueError::new_err(format!("{key}={v}: {what}"));
+    if v.is_none() {
+        return Ok(Value::Null);
     }
-}
-
-impl RenderKwargs<'_> {
-    /// Checks the arguments and builds the request.
-    pub fn validate(&self) -> PyResult<RenderRequest> {
-        if self.width == 0 || self.height == 0 {
-            return bad(format!(
-                "width={}, height={}: the image must not be empty",
-                self.width, self.height
-            ));
-        }
-        if self.spp == 0 {
-            return bad("spp=0: at least one sample per pixel".into());
-        }
-        let (x, y, w, h) = self.cell.unwrap_or((0, 0, self.width, self.height));
-        let cell = PixelRect::new(x, y, w, h);
-        if !cell.fits_in(self.width, self.height) {
-            return bad(format!(
-                "cell=({x}, {y}, {w}, {h}): expected a non-empty (x, y, width, height) inside the {}x{} image",
-                self.width, self.height
-            ));
-        }
-        let (s0, s1) = self.sample_range.unwrap_or((0, self.spp));
-        if s0 >= s1 || s1 > self.spp {
-            return bad(format!(
-                "sample_range=({s0}, {s1}): expected start < end <= spp ({})",
-                self.spp
-            ));
-        }
-        if self.passes == 0 || self.passes > s1 - s0 {
-            return bad(format!(
-                "passes={}: expected 1 to {} (one sample per pass at least)",
-                self.passes,
-                s1 - s0
-            ));
-        }
-        let sampler = choice(
-            "sampler",
-            self.sampler,
-            &[
-                ("sobol", SamplerKind::Sobol),
-                ("independent", SamplerKind::Independent),
-            ],
-        )?;
-        let camera_mode = choice(
-            "camera",
-            self.camera,
-            &[("cs184", CameraMode::Cs184), ("file", CameraMode::File)],
-        )?;
-        let bvh = choice(
-            "bvh",
-            self.bvh,
-            &[
-                ("sah", BuildStrategy::Sah),
-                ("median", BuildStrategy::Median),
-                ("none", BuildStrategy::None),
-            ],
-        )?;
-        Ok(RenderRequest {
-            scene: SceneOptions {
-                width: self.width,
-                height: self.height,
-                camera_mode,
-                bvh,
-                lens_radius: self.aperture,
-                focal_distance: self.focal_distance,
-                environment: self.environment.clone(),
-            },
-            settings: RenderSettings {
-                spp: self.spp,
-                seed: self.seed,
-                integrator: self.integrator()?,
-                sampler,
-                threads: self.threads,
-                cell: Some(cell),
-                adaptive: self.adaptive,
-                ..RenderSettings::default()
-            },
-            samples: s0..s1,
-            passes: self.passes,
-        })
+    if v.is_instance_of::<PyBool>() {
+        return Ok(Value::Bool(v.extract()?));
     }
-
-    /// The estimator, chosen exactly as the CLI's flags choose it.
-    fn integrator(&self) -> PyResult<IntegratorKind> {
-        #[derive(Clone, Copy)]
-        enum Which {
-            Normals,
-            Path,
-            Direct,
-            Indirect,
-        }
-        let which = choice(
-            "integrator",
-            self.integrator,
-            &[
-                ("path", Which::Path),
-                ("normals", Which::Normals),
-                ("direct", Which::Direct),
-                ("indirect", Which::Indirect),
-            ],
-        )?;
-        let lighting = choice(
-            "lighting",
-            self.lighting,
-            &[
-                ("mis", LightingMode::Mis),
-                ("light", LightingMode::Light),
-                ("hemisphere", LightingMode::Hemisphere),
-            ],
-        )?;
-        let m = self.max_depth;
-        let bounces = match which {
-            Which::Normals => return Ok(IntegratorKind::Normals),
-            Which::Direct => 0..=m.min(1),
-            Which::Indirect => 2..=m,
-            Which::Path if !self.accumulate => m..=m,
-            Which::Path => 0..=m,
+    if v.is_instance_of::<PyInt>() {
+        return match v.extract::<i64>() {
+            Ok(i) => Ok(i.into()),
+            Err(_) => v.extract::<u64>().map(Value::from).map_err(|_| bad("integer out of range")),
         };
-        Ok(IntegratorKind::Path(PathSettings {
-            bounces,
-            lighting,
-            light_samples: self.light_samples,
-            roulette_from: self.roulette.then_some(3),
-        }))
     }
+    if v.is_instance_of::<PyFloat>() {
+        let f: f64 = v.extract()?;
+        return Number::from_f64(f)
+            .map(Value::Number)
+            .ok_or_else(|| bad("expected a finite number"));
+    }
+    if v.is_instance_of::<PyString>() {
+        return Ok(Value::String(v.extract()?));
+    }
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        let items: PyResult<Vec<Value>> = v.try_iter()?.map(|item| to_json(key, &item?)).collect();
+        return Ok(Value::Array(items?));
+    }
+    if let Ok(d) = v.cast::<PyDict>() {
+        let mut m = Map::new();
+        for (k, item) in d.iter() {
+            m.insert(k.extract::<String>()?, to_json(key, &item)?);
+        }
+        return Ok(Value::Object(m));
+    }
+    if let Ok(path) = v.extract::<std::path::PathBuf>() {
+        return Ok(Value::String(path.to_string_lossy().into_owned()));
+    }
+    Err(bad("expected None, a bool, a number, a string, a path, or a list of these"))
+}
+
+/// Keyword arguments as a JSON object of settings.
+pub fn kwargs_json(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Map<String, Value>> {
+    let mut m = Map::new();
+    if let Some(kwargs) = kwargs {
+        for (k, v) in kwargs.iter() {
+            let key: String = k.extract()?;
+            let value = to_json(&key, &v)?;
+            m.insert(key, value);
+        }
+    }
+    Ok(m)
+}
+
+/// Pulls `sample_range` and `passes` out of the keywords and resolves the
+/// rest against the scene's hints.
+pub fn request(hints: &RenderHints, mut kwargs: Map<String, Value>) -> PyResult<RenderRequest> {
+    let sample_range = kwargs.remove("sample_range");
+    let passes = kwargs.remove("passes");
+    let settings = Settings::resolve(hints, &kwargs).map_err(value_error)?;
+    let spp = settings.sampling.spp();
+    let samples = match sample_range {
+        None | Some(Value::Null) => 0..spp,
+        Some(v) => match serde_json::from_value::<(u32, u32)>(v.clone()) {
+            Ok((s0, s1)) if s0 < s1 && s1 <= spp => s0..s1,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "sample_range={v}: expected (start, end) with start < end <= spp ({spp})"
+                )))
+            }
+        },
+    };
+    let n = samples.end - samples.start;
+    let passes = match passes {
+        None | Some(Value::Null) => 1,
+        Some(v) => match v.as_u64() {
+            Some(p) if (1..=n as u64).contains(&p) => p as u32,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "passes={v}: expected 1 to {n} (one sample per pass at least)"
+                )))
+            }
+        },
+    };
+    Ok(RenderRequest {
+        settings,
+        samples,
+        passes,
+    })
 }
 
 /// `range` cut into `passes` consecutive parts whose lengths differ by at
@@ -206,4 +133,18 @@ pub fn split_samples(range: &Range<u32>, passes: u32) -> Vec<Range<u32>> {
             at(k)..at(k + 1)
         })
         .collect()
+}
+
+/// The help of every setting, by name: the same text as `candela --help`.
+pub fn settings_help() -> Vec<(String, String)> {
+    use clap::Args;
+    let cmd = Settings::augment_args(clap::Command::new("candela"));
+    let mut help: Vec<(String, String)> = cmd
+        .get_arguments()
+        .map(|a| (a.get_id().to_string(), a.get_help().map(|h| h.to_string()).unwrap_or_default()))
+        .collect();
+    // Settings only the CS184 spellings reach on the command line.
+    help.push(("cell".into(), CELL_HELP.into()));
+    help.push(("adaptive".into(), ADAPTIVE_HELP.into()));
+    help
 }

@@ -28,7 +28,9 @@ def demo_path():
 def spheres_path():
     d = _cs184_dir()
     if d is None:
-        pytest.skip("CS184 scenes not found (set CANDELA_SCENES)")
+        # A test that needs the corpus fails without it rather than passing.
+        pytest.fail("CS184 scenes not found: expected shared/scenes/cs184 beside the repository "
+                    "(or set CANDELA_SCENES)")
     return str(d / "CBspheres_lambertian.dae")
 
 

@@ -11,9 +11,8 @@
 //! pixel's standard error.
 
 use candela_image::metrics::ztest::{z_test, BlockStats};
-use candela_image::RgbImage;
 use candela_render::film::{Adaptive, Film};
-use candela_render::integrator::{IntegratorKind, PathSettings};
+use candela_render::integrator::IntegratorSettings;
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use std::error::Error;
@@ -40,7 +39,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let scene = Scene::build(&loaded.scene, &opts)?;
     let base = RenderSettings {
         spp,
-        integrator: IntegratorKind::Path(PathSettings::default()),
+        integrator: IntegratorSettings::default(),
         ..Default::default()
     };
     let mut films = Vec::new();
@@ -76,13 +75,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         films.push(out.film);
     }
     let stats = |f: &Film| -> Result<BlockStats, Box<dyn Error>> {
-        let image = |values: Vec<glam::Vec3>| {
-            let pixels = values.into_iter().map(|c| c.to_array()).collect();
-            RgbImage::from_pixels(f.width as usize, f.height as usize, pixels)
-        };
         Ok(BlockStats::from_pixel_errors(
-            &image(f.resolve())?,
-            &image(f.std_error())?,
+            &f.resolve(),
+            &f.std_error(),
             8,
         )?)
     };

@@ -16,6 +16,7 @@ pub mod material;
 pub mod render;
 pub mod sampling;
 pub mod scene;
+pub mod settings;
 pub mod shape;
 pub mod stats;
 pub mod texture;

@@ -8,7 +8,7 @@
 
 mod common;
 
-use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
+use candela_render::integrator::{IntegratorSettings, LightingMode};
 use common::*;
 
 const Z: f64 = 4.5;
@@ -18,13 +18,13 @@ const MODES: [LightingMode; 3] = [
     LightingMode::Mis,
 ];
 
-fn path(bounces: std::ops::RangeInclusive<u32>, lighting: LightingMode) -> IntegratorKind {
-    IntegratorKind::Path(PathSettings {
-        bounces,
-        lighting,
-        light_samples: 1,
-        roulette_from: Some(3),
-    })
+/// Path tracing to depth `m`, adding every bounce or (`accumulate` false)
+/// only light after exactly `m` bounces.
+fn path(m: u32, accumulate: bool, lighting: LightingMode) -> IntegratorSettings {
+    IntegratorSettings {
+        accumulate,
+        ..IntegratorSettings::path(m, lighting)
+    }
 }
 
 #[test]
@@ -32,7 +32,7 @@ fn white_furnace_converges_to_le_over_one_minus_albedo() {
     let (albedo, le) = (0.6f64, 0.5f64);
     let scene = furnace(albedo as f32, le as f32);
     for mode in MODES {
-        let e = estimate(&scene, path(0..=100_000, mode), 16, 64, 1);
+        let e = estimate(&scene, path(100_000, true, mode), 16, 64, 1);
         assert_converges(
             &format!("{mode:?}, unlimited depth"),
             &e,
@@ -49,7 +49,7 @@ fn white_furnace_truncates_the_series_at_each_depth() {
     for mode in MODES {
         for m in 0..=4u32 {
             let expected: f64 = (0..=m).map(|k| le * albedo.powi(k as i32)).sum();
-            let e = estimate(&scene, path(0..=m, mode), 8, 64, 2 + m as u64);
+            let e = estimate(&scene, path(m, true, mode), 8, 64, 2 + m as u64);
             assert_converges(&format!("{mode:?}, -m {m}"), &e, expected, Z);
         }
     }
@@ -62,7 +62,7 @@ fn furnace_single_bounce_view_isolates_one_term() {
     let scene = furnace(albedo as f32, le as f32);
     for mode in MODES {
         for m in [1u32, 3] {
-            let e = estimate(&scene, path(m..=m, mode), 8, 64, 11 + m as u64);
+            let e = estimate(&scene, path(m, false, mode), 8, 64, 11 + m as u64);
             assert_converges(
                 &format!("{mode:?}, -o 0 -m {m}"),
                 &e,
@@ -77,7 +77,7 @@ fn furnace_single_bounce_view_isolates_one_term() {
 fn pbrt_analytic_sphere_has_unit_radiance() {
     let scene = analytic_sphere();
     for mode in [LightingMode::Light, LightingMode::Mis] {
-        let e = estimate(&scene, path(0..=100_000, mode), 16, 64, 7);
+        let e = estimate(&scene, path(100_000, true, mode), 16, 64, 7);
         assert_converges(&format!("{mode:?}"), &e, 1.0, Z);
         // The task's own bound too: within 2.5%.
         assert!((e.mean - 1.0).abs() < 0.025, "{mode:?}: {}", e.mean);
@@ -87,22 +87,22 @@ fn pbrt_analytic_sphere_has_unit_radiance() {
 #[test]
 fn russian_roulette_changes_noise_not_the_mean() {
     let scene = furnace(0.8, 0.5);
-    let with = |rr: Option<u32>, seed| {
+    let with = |rr: bool, seed| {
         estimate(
             &scene,
-            IntegratorKind::Path(PathSettings {
-                bounces: 0..=8,
+            IntegratorSettings {
+                max_depth: 8,
                 lighting: LightingMode::Mis,
-                light_samples: 1,
-                roulette_from: rr,
-            }),
+                roulette: rr,
+                ..Default::default()
+            },
             16,
             32,
             seed,
         )
     };
-    let a = with(Some(1), 21);
-    let b = with(None, 22);
+    let a = with(true, 21);
+    let b = with(false, 22);
     let expected: f64 = (0..=8).map(|k| 0.5 * 0.8f64.powi(k)).sum();
     assert_converges("with roulette", &a, expected, Z);
     assert_converges("without roulette", &b, expected, Z);

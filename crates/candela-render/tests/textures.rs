@@ -18,7 +18,7 @@ mod common;
 use candela_image::metrics::ztest::{z_test, BlockStats};
 use candela_image::{write_exr, ExrLayers, RgbImage};
 use candela_render::camera::framing::CameraMode;
-use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
+use candela_render::integrator::{IntegratorSettings, LightingMode};
 use candela_render::light::{EnvironmentMap, EnvironmentOptions};
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
@@ -114,18 +114,17 @@ fn batches(scene: &Scene) -> Vec<RgbImage> {
             let settings = RenderSettings {
                 spp: 16,
                 seed: 500 + seed,
-                integrator: IntegratorKind::Path(PathSettings {
-                    bounces: 0..=1,
+                integrator: IntegratorSettings {
+                    max_depth: 1,
                     lighting: LightingMode::Mis,
-                    light_samples: 1,
-                    roulette_from: None,
-                }),
+                    roulette: false,
+                    ..Default::default()
+                },
                 ..Default::default()
             };
             let out = render(scene, &settings, &|_| {}).expect("render");
             assert_eq!(out.stats.invalid_samples, 0);
-            let pixels = out.film.resolve().iter().map(|c| c.to_array()).collect();
-            RgbImage::from_pixels(SIZE as usize, SIZE as usize, pixels).expect("image")
+            out.film.resolve()
         })
         .collect()
 }

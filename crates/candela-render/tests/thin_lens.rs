@@ -17,7 +17,7 @@
 mod common;
 
 use candela_render::camera::framing::CameraMode;
-use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
+use candela_render::integrator::{IntegratorSettings, LightingMode};
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{BsdfDesc, MeshDesc, SceneDesc};
@@ -99,12 +99,12 @@ fn render_edge(z: f32, a: f32, d_f: f32) -> (Vec<f64>, f64) {
     let settings = RenderSettings {
         spp: SPP,
         seed: 11,
-        integrator: IntegratorKind::Path(PathSettings {
-            bounces: 0..=0,
+        integrator: IntegratorSettings {
+            max_depth: 0,
             lighting: LightingMode::Mis,
-            light_samples: 1,
-            roulette_from: None,
-        }),
+            roulette: false,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let out = render(&scene, &settings, &|_| {}).expect("render");
@@ -112,7 +112,7 @@ fn render_edge(z: f32, a: f32, d_f: f32) -> (Vec<f64>, f64) {
     let columns = (0..WIDTH as usize)
         .map(|x| {
             (0..HEIGHT as usize)
-                .map(|y| f64::from(image[y * WIDTH as usize + x].x))
+                .map(|y| f64::from(image.pixels()[y * WIDTH as usize + x][0]))
                 .sum::<f64>()
                 / f64::from(HEIGHT)
         })

@@ -8,11 +8,13 @@
 mod collada;
 pub mod desc;
 mod error;
+mod hints;
 mod lamps;
 mod report;
 
 pub use desc::*;
 pub use error::{ErrorKind, LoadError};
+pub use hints::RenderHints;
 pub use report::{Report, Warning};
 
 use std::path::{Path, PathBuf};
@@ -37,6 +39,8 @@ pub struct Loaded {
     pub scene: SceneDesc,
     /// Ignored elements and features, each named once.
     pub report: Report,
+    /// Render settings the scene suggests (below the user's own).
+    pub hints: RenderHints,
 }
 
 /// Loads a COLLADA (`.dae`) scene file.
@@ -93,7 +97,7 @@ pub fn demo_scene() -> Loaded {
     // The file is part of this crate and tested to load; should that ever
     // break, an empty scene with the error in its report is still returned
     // rather than a panic.
-    load_str(DEMO, &source, &LoadOptions::default()).unwrap_or_else(|e| Loaded {
+    let mut loaded = load_str(DEMO, &source, &LoadOptions::default()).unwrap_or_else(|e| Loaded {
         scene: SceneDesc {
             source: source.clone(),
             ..SceneDesc::default()
@@ -108,8 +112,20 @@ pub fn demo_scene() -> Loaded {
             }],
             notes: Vec::new(),
         },
-    })
+        hints: RenderHints::default(),
+    });
+    // Its own camera frames the box; at this sample count and clamp the
+    // first image a new user sees is clean and takes seconds.
+    loaded.hints = RenderHints {
+        spp: Some(DEMO_SPP),
+        file_camera: true,
+        ..RenderHints::default()
+    };
+    loaded
 }
+
+/// Samples per pixel of the demo unless the user says otherwise.
+pub const DEMO_SPP: u32 = 64;
 
 fn collada_loc_of_byte(bytes: &[u8], byte: usize) -> SourceLoc {
     let valid = std::str::from_utf8(&bytes[..byte]).unwrap_or("");

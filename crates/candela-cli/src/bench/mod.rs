@@ -8,9 +8,9 @@ mod scaling;
 mod timing;
 
 use anyhow::Result;
-use candela_bvh::BuildStrategy;
 use candela_render::accel::{Accel, Layout};
 use candela_render::geometry::Ray;
+use candela_render::settings::Bvh;
 use clap::{Args, Subcommand, ValueEnum};
 use rayon::prelude::*;
 use std::path::PathBuf;
@@ -42,8 +42,8 @@ pub struct RaysArgs {
     #[arg(long)]
     pub any_hit: bool,
     /// BVH build strategy.
-    #[arg(long, value_enum, default_value_t = Strategy::Sah)]
-    pub bvh: Strategy,
+    #[arg(long, value_enum, default_value_t = Bvh::Sah)]
+    pub bvh: Bvh,
     /// BVH node layout.
     #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
     pub layout: NodeLayout,
@@ -71,8 +71,8 @@ pub struct ScalingArgs {
     #[arg(long, default_value_t = 200_000)]
     pub rays: usize,
     /// BVH build strategy.
-    #[arg(long, value_enum, default_value_t = Strategy::Sah)]
-    pub bvh: Strategy,
+    #[arg(long, value_enum, default_value_t = Bvh::Sah)]
+    pub bvh: Bvh,
     /// BVH node layout.
     #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
     pub layout: NodeLayout,
@@ -92,27 +92,6 @@ impl From<NodeLayout> for Layout {
         match l {
             NodeLayout::Binary => Layout::Binary,
             NodeLayout::Wide4 => Layout::Wide4,
-        }
-    }
-}
-
-/// The build strategy as a command-line value.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Strategy {
-    /// Binned surface area heuristic.
-    Sah,
-    /// Centroid median split (the CS184 algorithm).
-    Median,
-    /// No hierarchy: brute force.
-    None,
-}
-
-impl From<Strategy> for BuildStrategy {
-    fn from(s: Strategy) -> Self {
-        match s {
-            Strategy::Sah => BuildStrategy::Sah,
-            Strategy::Median => BuildStrategy::Median,
-            Strategy::None => BuildStrategy::None,
         }
     }
 }

@@ -21,7 +21,13 @@ from candela._candela import (
     load,
     merge,
     read_image,
+    settings_help,
 )
 
-__all__ = ["Film", "LoadError", "Scene", "demo_scene", "load", "merge", "read_image"]
+# After the native names it uses: ``candela.distributed`` is there with a
+# plain ``import candela`` (Dask itself is imported only when used).
+from candela import distributed  # noqa: E402
+
+__all__ = ["Film", "LoadError", "Scene", "demo_scene", "load", "merge", "read_image", "settings_help",
+           "distributed"]
 __version__ = "0.1.0"

@@ -1,7 +1,7 @@
 """Type stubs of the native module ``candela._candela``."""
 
 from os import PathLike
-from typing import Literal, Optional, Sequence, Tuple, TypedDict, Union
+from typing import Any, Dict, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -71,9 +71,10 @@ class Film:
         """Samples per pixel, shape (H, W)."""
     def arrays(self) -> FilmArrays:
         """The raw sums as NumPy arrays."""
-    def save(self, path: _Path, *, samples: bool = False, aovs: bool = False) -> None:
-        """Writes .png (tone-mapped sRGB) or .exr (linear; optional samples,
-        albedo and normal layers)."""
+    def save(self, path: _Path, *, samples: bool = False, aovs: bool = False, **settings: Any) -> None:
+        """Writes .png (tone-mapped sRGB with the ``exposure`` and ``tone``
+        settings) or .exr (linear; optional samples, albedo and normal
+        layers)."""
     def add(self, other: Film) -> None:
         """Adds a part of the same image lying inside this film, in place."""
     def to_bytes(self) -> bytes:
@@ -92,34 +93,17 @@ class Scene:
     def render(
         self,
         *,
-        spp: int = 16,
-        max_depth: int = 5,
-        light_samples: int = 1,
-        integrator: Literal["path", "normals", "direct", "indirect"] = "path",
-        lighting: Literal["mis", "light", "hemisphere"] = "mis",
-        accumulate: bool = True,
-        roulette: bool = True,
-        sampler: Literal["sobol", "independent"] = "sobol",
-        seed: int = 0,
-        width: int = 800,
-        height: int = 600,
-        camera: Literal["cs184", "file"] = "cs184",
-        bvh: Literal["sah", "median", "none"] = "sah",
-        cell: Optional[Tuple[int, int, int, int]] = None,
         sample_range: Optional[Tuple[int, int]] = None,
         passes: int = 1,
-        adaptive: Union[None, bool, float, Tuple[int, float]] = None,
-        threads: int = 0,
-        aperture: float = 0.0,
-        focal_distance: Optional[float] = None,
-        env_map: Optional[_Path] = None,
-        env_scale: float = 1.0,
-        env_rotate: float = 0.0,
+        **settings: Any,
     ) -> Film:
-        """Renders the scene; ``cell=(x, y, width, height)``; ``aperture`` and
-        ``focal_distance`` are the thin lens (CLI ``-b``/``-d``); ``env_map``
-        an equirectangular map or ``"sky"`` (CLI ``-e``); Ctrl-C raises
-        KeyboardInterrupt."""
+        """Renders the scene. The keywords are the render settings, named as
+        the CLI's long flags (``settings_help()`` lists them with their help:
+        ``spp``, ``max_depth``, ``integrator``, ``width``, ``cell``,
+        ``adaptive``, ...); settings not given take the scene's suggestion,
+        else the default. Ctrl-C raises KeyboardInterrupt."""
+    def settings(self, **settings: Any) -> Dict[str, Any]:
+        """Every setting a ``render`` with these keywords would use."""
 
 def load(path: _Path, *, strict: bool = False) -> Scene:
     """Loads a COLLADA (.dae) scene."""
@@ -132,3 +116,6 @@ def merge(films: Sequence[Film]) -> Film:
 
 def read_image(path: _Path) -> npt.NDArray[np.float32]:
     """Reads a PNG (as linear RGB) or an EXR, shape (H, W, 3)."""
+
+def settings_help() -> Dict[str, str]:
+    """The help of every render setting, by name (as ``candela --help``)."""

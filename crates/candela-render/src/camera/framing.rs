@@ -12,7 +12,9 @@ use candela_scene::{CameraDesc, SceneDesc};
 use glam::{Vec3, Vec4};
 
 /// How to place the camera.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
 pub enum CameraMode {
     /// The CS184 orbit rule (default).
     #[default]

@@ -7,7 +7,7 @@
 //! so an adaptive render is as deterministic as a uniform one.
 
 /// Adaptive-sampling settings (`-a BATCH TOL`; the course uses `-a 64 0.05`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Adaptive {
     /// Samples between two convergence checks of a pixel.
     pub batch: u32,

@@ -9,13 +9,16 @@
 //! `SampleRecord`). The image is resolved only at the end.
 
 pub mod adaptive;
+pub mod output;
 mod rect;
 mod sums;
 
 pub use adaptive::Adaptive;
+pub use output::{write_film, OutputError, OutputFormat, OutputOptions};
 pub use rect::PixelRect;
 pub use sums::{luminance, PixelSums, SampleValue};
 
+use candela_image::{GrayImage, RgbImage};
 use glam::Vec3;
 
 /// A `width` × `height` grid of [`PixelSums`], row-major, y = 0 at the top.
@@ -93,26 +96,39 @@ impl Film {
         Ok(())
     }
 
-    /// The image: mean radiance per pixel, row-major.
-    pub fn resolve(&self) -> Vec<Vec3> {
-        self.pixels.iter().map(PixelSums::mean).collect()
+    /// The image: mean radiance per pixel.
+    pub fn resolve(&self) -> RgbImage {
+        self.rgb(PixelSums::mean)
     }
 
     /// Mean first-hit albedo per pixel (black where nothing was hit).
-    pub fn albedo(&self) -> Vec<Vec3> {
-        self.pixels.iter().map(PixelSums::mean_albedo).collect()
+    pub fn albedo(&self) -> RgbImage {
+        self.rgb(PixelSums::mean_albedo)
     }
 
     /// Mean first-hit shading normal per pixel, facing the camera, in world
     /// space; not renormalised, as denoisers expect (zero where nothing was
     /// hit).
-    pub fn normal(&self) -> Vec<Vec3> {
-        self.pixels.iter().map(PixelSums::mean_normal).collect()
+    pub fn normal(&self) -> RgbImage {
+        self.rgb(PixelSums::mean_normal)
     }
 
     /// Standard error of each pixel's mean radiance, per channel.
-    pub fn std_error(&self) -> Vec<Vec3> {
-        self.pixels.iter().map(PixelSums::std_error).collect()
+    pub fn std_error(&self) -> RgbImage {
+        self.rgb(PixelSums::std_error)
+    }
+
+    /// Samples taken per pixel, as an image.
+    pub fn sample_count_image(&self) -> GrayImage {
+        let values = self.pixels.iter().map(|p| p.count as f32).collect();
+        GrayImage::from_values(self.width as usize, self.height as usize, values)
+            .expect("a film's pixel count matches its size")
+    }
+
+    fn rgb(&self, f: impl Fn(&PixelSums) -> Vec3) -> RgbImage {
+        let pixels = self.pixels.iter().map(|p| f(p).to_array()).collect();
+        RgbImage::from_pixels(self.width as usize, self.height as usize, pixels)
+            .expect("a film's pixel count matches its size")
     }
 
     /// Samples taken per pixel.

@@ -1,7 +1,9 @@
 //! Rectangles of pixels: the CS184 cell (`-p X Y DX DY`) and render tiles.
 
 /// A rectangle of pixels `[x, x + width) × [y, y + height)`, y = 0 at the top.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub struct PixelRect {
     /// Left column.
     pub x: u32,

@@ -34,7 +34,9 @@ pub fn power_heuristic(nf: f32, f_pdf: f32, ng: f32, g_pdf: f32) -> f32 {
 }
 
 /// How a vertex gathers direct light.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
 pub enum LightingMode {
     /// CS184's `-H`: direct light from `n` rays in uniformly sampled
     /// hemisphere directions at each vertex (the emitters they hit, and

@@ -1,7 +1,7 @@
 //! Integrators: estimate the radiance arriving along a camera ray.
 //!
-//! Each integrator is one small function, chosen once per render by
-//! [`IntegratorKind`] (Yocto/GL's layout); they share the per-thread
+//! Each integrator is one small function, chosen per sample from the
+//! user's [`IntegratorSettings`] (Yocto/GL's layout); they share the per-thread
 //! [`ThreadContext`] for statistics. [`sample`] also returns the first
 //! hit's albedo and normal, the auxiliary images denoisers want.
 
@@ -17,18 +17,9 @@ use crate::geometry::Ray;
 use crate::material::Material;
 use crate::sampling::Sampler;
 use crate::scene::{Scene, SurfaceHit};
+pub use crate::settings::{Estimator, IntegratorSettings};
 use crate::stats::RayCounts;
 use glam::Vec3;
-
-/// Which estimator renders the image.
-#[derive(Clone, Debug, PartialEq)]
-pub enum IntegratorKind {
-    /// Shading normals as colours (n * 0.5 + 0.5): the CS184 Part 1 view.
-    Normals,
-    /// Path tracing (which, with its bounce range, also gives the zero-bounce,
-    /// direct-only and indirect-only views).
-    Path(PathSettings),
-}
 
 /// Per-thread mutable state of a render: statistics only, so that results
 /// never depend on which thread rendered what.
@@ -64,18 +55,16 @@ impl FirstHitAov {
 /// One camera sample: radiance (or the colour the integrator shows) along
 /// `ray`, with the first hit's AOVs.
 pub fn sample(
-    kind: &IntegratorKind,
+    settings: &IntegratorSettings,
     scene: &Scene,
     ray: &Ray,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
 ) -> SampleValue {
     let mut aov = FirstHitAov::default();
-    let radiance = match kind {
-        IntegratorKind::Normals => normals::normals(scene, ray, ctx, &mut aov),
-        IntegratorKind::Path(settings) => {
-            path::path_radiance(scene, ray, settings, sampler, ctx, &mut aov)
-        }
+    let radiance = match settings.path_settings() {
+        None => normals::normals(scene, ray, ctx, &mut aov),
+        Some(path) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov),
     };
     SampleValue {
         radiance,
@@ -87,11 +76,11 @@ pub fn sample(
 /// Radiance (or the colour the integrator shows) along the camera `ray`,
 /// without AOVs.
 pub fn radiance(
-    kind: &IntegratorKind,
+    settings: &IntegratorSettings,
     scene: &Scene,
     ray: &Ray,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
 ) -> Vec3 {
-    sample(kind, scene, ray, sampler, ctx).radiance
+    sample(settings, scene, ray, sampler, ctx).radiance
 }

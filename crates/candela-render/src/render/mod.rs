@@ -22,7 +22,7 @@ mod tile;
 pub use control::{Cancel, Progress, RenderControl};
 
 use crate::film::{Adaptive, Film, PixelRect};
-use crate::integrator::IntegratorKind;
+use crate::integrator::IntegratorSettings;
 use crate::sampling::SamplerKind;
 use crate::scene::Scene;
 use crate::stats::RenderStats;
@@ -32,8 +32,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 use tile::{TilePass, TileState};
 
-/// Default edge length of a render tile in pixels.
-pub const DEFAULT_TILE: u32 = 16;
+pub use crate::settings::DEFAULT_TILE;
 
 /// What to render.
 #[derive(Clone, Debug)]
@@ -46,7 +45,7 @@ pub struct RenderSettings {
     /// the same mean.
     pub seed: u64,
     /// The estimator.
-    pub integrator: IntegratorKind,
+    pub integrator: IntegratorSettings,
     /// Sample sequence.
     pub sampler: SamplerKind,
     /// Worker threads; 0 uses every core.
@@ -75,7 +74,10 @@ impl Default for RenderSettings {
         Self {
             spp: 1,
             seed: 0,
-            integrator: IntegratorKind::Normals,
+            integrator: IntegratorSettings {
+                estimator: crate::integrator::Estimator::Normals,
+                ..IntegratorSettings::default()
+            },
             sampler: SamplerKind::default(),
             threads: 0,
             cell: None,

@@ -6,7 +6,9 @@ use super::hash::{combine, pixel_hash, unit_f32};
 use super::sobol::{laine_karras, sobol_dim1_reversed};
 
 /// Which point set a [`Sampler`] draws from.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
 pub enum SamplerKind {
     /// Independent uniform values from an integer hash: simple, unbiased,
     /// and the reference the stratified sampler is tested against.

@@ -6,7 +6,7 @@
 
 use candela_image::metrics::ztest::{z_test, BlockStats};
 use candela_image::RgbImage;
-use candela_render::integrator::{IntegratorKind, LightingMode, PathSettings};
+use candela_render::integrator::{IntegratorSettings, LightingMode};
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::Scene;
 
@@ -40,19 +40,17 @@ fn batches(scene: &Scene, case: &Agreement, lighting: LightingMode, spp: u32) ->
             let settings = RenderSettings {
                 spp,
                 seed: case.seed_base + 1000 * batch + lighting as u64,
-                integrator: IntegratorKind::Path(PathSettings {
-                    bounces: 0..=case.max_bounces,
-                    lighting,
-                    light_samples: 1,
-                    roulette_from: case.roulette_from,
-                }),
+                integrator: IntegratorSettings {
+                    max_depth: case.max_bounces,
+                    lighting: lighting,
+                    roulette: case.roulette_from.is_some(),
+                    ..Default::default()
+                },
                 ..Default::default()
             };
             let out = render(scene, &settings, &|_| {}).expect("render");
             assert_eq!(out.stats.invalid_samples, 0, "NaN or infinite samples");
-            let pixels = out.film.resolve().iter().map(|c| c.to_array()).collect();
-            RgbImage::from_pixels(out.film.width as usize, out.film.height as usize, pixels)
-                .expect("image")
+            out.film.resolve()
         })
         .collect()
 }

@@ -5,7 +5,7 @@
 pub mod agreement;
 
 use candela_render::camera::framing::CameraMode;
-use candela_render::integrator::IntegratorKind;
+use candela_render::integrator::IntegratorSettings;
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{
@@ -121,7 +121,7 @@ pub struct Estimate {
 /// Renders `desc` from its file camera and pools every sample.
 pub fn estimate(
     desc: &SceneDesc,
-    integrator: IntegratorKind,
+    integrator: IntegratorSettings,
     size: u32,
     spp: u32,
     seed: u64,

@@ -72,6 +72,7 @@ pub(crate) fn load_str(
     let up = up_axis(&ctx, root)?;
     let scene = nodes::read_scene(&ctx, root, up)?;
     Ok(Loaded {
+        hints: crate::RenderHints::default(),
         scene,
         report: ctx.into_report(),
     })

@@ -24,11 +24,20 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import candela
 
-__all__ = ["WorkUnit", "plan", "render", "render_unit"]
+__all__ = ["SettingsRefused", "UNSUPPORTED", "WorkUnit", "plan", "render", "render_unit"]
 
 #: Settings that decide which pixels and samples a unit renders; the planner
 #: owns them.
 _PLANNED = ("cell", "sample_range", "passes")
+
+#: Settings the distributed render cannot honour yet, with the CLI flag that
+#: spells each: a unit's time budget or adaptive rule would see only its own
+#: part of a pixel's samples.
+UNSUPPORTED = {"time": "--time", "adaptive": "-a"}
+
+
+class SettingsRefused(ValueError):
+    """The distributed render cannot honour a setting it was given."""
 
 
 @dataclass(frozen=True)
@@ -123,8 +132,10 @@ def render(
     """Renders ``scene_path`` on the Dask ``client``'s cluster.
 
     ``settings`` are those of ``Scene.render`` (``spp``, ``seed``, ``width``,
-    ``height``, ``max_depth``, ...; ``threads`` is per unit and defaults to 1,
-    since Dask already runs one unit per worker thread). Returns the merged
+    ``height``, ``max_depth``, ...: ``candela.settings_help()``); ``threads``
+    is per unit and defaults to 1, since Dask already runs one unit per
+    worker thread. The settings travel to the workers as the settings' JSON
+    (the one wire format of every front end). Returns the merged
     film, equal bit for bit to ``candela.load(scene_path).render(passes=passes,
     **settings)``. ``retries`` is how often Dask reruns a unit that raised;
     units lost with a dead worker are rerun by the scheduler in any case.
@@ -133,13 +144,17 @@ def render(
     """
     for name in _PLANNED:
         if name in settings:
-            raise ValueError(f"{name}= is chosen by the planner (use tiles= and passes=)")
+            raise SettingsRefused(f"{name}= is chosen by the planner (use tiles= and passes=)")
+    refused = [f"{k} ({UNSUPPORTED[k]})" for k in UNSUPPORTED if settings.get(k) not in (None, False)]
+    if refused:
+        raise SettingsRefused(f"the distributed render does not support {', '.join(refused)} yet")
     settings.setdefault("threads", 1)
-    width = settings.setdefault("width", 800)
-    height = settings.setdefault("height", 600)
-    spp = settings.setdefault("spp", 16)
-    units = plan(width, height, spp, tiles, passes)
     path = os.path.abspath(os.fspath(scene_path))
+    # Every setting resolved here, once (defaults < the scene's suggestions
+    # < the caller's), so that every unit renders the same settings.
+    settings = _scene(path, strict).settings(**settings)
+    width, height, spp = settings["width"], settings["height"], settings["spp"]
+    units = plan(width, height, spp, tiles, passes)
     fn = unit_fn or render_unit
     run = uuid.uuid4().hex[:12]
     start = time.perf_counter()

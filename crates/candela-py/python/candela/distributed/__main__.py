@@ -1,36 +1,39 @@
-"""``python -m candela.distributed scene.dae --dask local:2 ...``
+"""``python -m candela.distributed scene.dae --dask local:2 --settings '{"spp": 64}'``
 
 Renders a scene on a Dask cluster and writes the image. ``--dask`` is a
 scheduler address (``tcp://host:8786``) or ``local:N`` for a cluster of N
-single-threaded worker processes on this machine.
+single-threaded worker processes on this machine. The render settings come
+as one JSON object with the names of ``Scene.render``'s keywords
+(``candela.settings_help()``); ``candela --dask ADDRESS [flags]`` is the
+command-line front that builds it from the CLI's flags. Settings it cannot
+honour are refused by name with exit code 2.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import time
 
 import candela
 import candela.distributed as dist
 
+#: Exit code for settings the distributed render refuses (as the CLI's).
+REFUSED = 2
+
 
 def _args(argv):
     p = argparse.ArgumentParser(prog="python -m candela.distributed", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("scene", help="scene file (.dae), readable by every worker")
+    p.add_argument("scene", help="scene file, readable by every worker")
     p.add_argument("--dask", required=True, metavar="ADDRESS", help="tcp://host:port or local:N")
-    p.add_argument("-s", "--spp", type=int, default=16, help="samples per pixel")
-    p.add_argument("-m", "--max-depth", type=int, default=5, help="maximum bounces")
-    p.add_argument("-l", "--light-samples", type=int, default=1, help="light samples per vertex")
-    p.add_argument("-r", "--resolution", type=int, nargs=2, default=[800, 600], metavar=("W", "H"))
+    p.add_argument("--settings", default="{}", metavar="JSON", help="render settings as a JSON object")
     p.add_argument("-f", "--file", default="candela.png", help="output .png or .exr")
-    p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--integrator", default="path", choices=["path", "normals", "direct", "indirect"])
     p.add_argument("--tiles", type=int, nargs=2, default=[4, 4], metavar=("NX", "NY"), help="grid of cells")
     p.add_argument("--passes", type=int, default=1, help="sample ranges per pixel")
     p.add_argument("--retries", type=int, default=3, help="reruns of a unit that raised")
-    p.add_argument("-t", "--threads", type=int, default=1, help="render threads per unit")
+    p.add_argument("--strict", action="store_true", help="load warnings are errors")
     p.add_argument("-q", "--quiet", action="store_true")
     return p.parse_args(argv)
 
@@ -47,6 +50,19 @@ def _client(address: str):
 
 def main(argv=None) -> int:
     a = _args(argv)
+    try:
+        settings = json.loads(a.settings)
+        if not isinstance(settings, dict):
+            raise ValueError("--settings: expected a JSON object")
+        # Refuse what cannot be honoured before a cluster is started.
+        candela.load(a.scene, strict=a.strict).settings(**settings)
+        refused = [f"{k} ({dist.UNSUPPORTED[k]})" for k in dist.UNSUPPORTED if settings.get(k) not in (None, False)]
+        if refused:
+            raise dist.SettingsRefused(f"--dask does not support {', '.join(refused)} yet")
+    except (ValueError, candela.LoadError) as e:
+        print(f"candela: error: {e}", file=sys.stderr)
+        return REFUSED
+    output = {k: settings[k] for k in ("exposure", "tone") if k in settings}
     client, cluster = _client(a.dask)
     try:
         done = [0]
@@ -58,13 +74,9 @@ def main(argv=None) -> int:
                 print(f"\rcandela: {done[0]}/{units} units", end="", file=sys.stderr, flush=True)
 
         start = time.perf_counter()
-        film = dist.render(
-            a.scene, client, tiles=tuple(a.tiles), passes=a.passes, retries=a.retries,
-            on_unit=progress, spp=a.spp, max_depth=a.max_depth, light_samples=a.light_samples,
-            width=a.resolution[0], height=a.resolution[1], seed=a.seed, integrator=a.integrator,
-            threads=a.threads,
-        )
-        film.save(a.file)
+        film = dist.render(a.scene, client, tiles=tuple(a.tiles), passes=a.passes, retries=a.retries,
+                           strict=a.strict, on_unit=progress, **settings)
+        film.save(a.file, aovs=True, **output)
         if not a.quiet:
             s = film.stats
             print(f"\ncandela: {s['rays']} rays in {time.perf_counter() - start:.3f} s "

@@ -1,0 +1,136 @@
+//! Film to file: the one path every front end (CLI, Python, viewer, tests)
+//! writes a render by. PNG goes through a tone map; EXR keeps linear
+//! radiance with the layers asked for; with adaptive sampling the CS184
+//! sample-rate image is written beside the output. Every file is written
+//! atomically, so a failed write leaves no file.
+
+use super::Film;
+use candela_image::{
+    rate_image, write_exr, write_png, write_png_display, ExrLayers, ImageError, ToneMap,
+};
+use std::path::{Path, PathBuf};
+
+/// The output file types.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputFormat {
+    /// 8-bit sRGB through a tone map.
+    Png,
+    /// Linear float layers.
+    Exr,
+}
+
+impl OutputFormat {
+    /// The format of `path`, from its extension (case-insensitive).
+    pub fn of(path: &Path) -> Option<Self> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("png") => Some(Self::Png),
+            Some("exr") => Some(Self::Exr),
+            _ => None,
+        }
+    }
+}
+
+/// What goes into the files besides the beauty image.
+#[derive(Clone, Debug, Default)]
+pub struct OutputOptions {
+    /// PNG exposure and curve.
+    pub tone: ToneMap,
+    /// EXR: the albedo and normal layers denoisers read.
+    pub aovs: bool,
+    /// EXR: a `samples` layer with each pixel's sample count.
+    pub sample_counts: bool,
+    /// Also write `<stem>_rate.png`, the CS184 sample-rate image, with this
+    /// sample count shown as red (adaptive sampling).
+    pub rate_image: Option<u32>,
+}
+
+/// Why a film could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    /// The file name ends in neither `.png` nor `.exr`.
+    #[error("{0}: the output must end in .png or .exr")]
+    Format(PathBuf),
+    /// The image could not be encoded or written.
+    #[error("cannot write {0}: {1}")]
+    Write(PathBuf, ImageError),
+}
+
+/// `<folder>/<stem>_rate.png` beside `output`.
+pub fn rate_path(output: &Path) -> PathBuf {
+    let stem = output
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    output.with_file_name(format!("{stem}_rate.png"))
+}
+
+/// Writes `film` to `path` (its extension chooses the format) and, if asked,
+/// the rate image beside it. Returns the paths written.
+pub fn write_film(
+    path: &Path,
+    film: &Film,
+    opts: &OutputOptions,
+) -> Result<Vec<PathBuf>, OutputError> {
+    let format = OutputFormat::of(path).ok_or_else(|| OutputError::Format(path.to_path_buf()))?;
+    let failed = |p: &Path| {
+        let p = p.to_path_buf();
+        move |e| OutputError::Write(p, e)
+    };
+    match format {
+        OutputFormat::Png => write_png(path, &film.resolve(), &opts.tone),
+        OutputFormat::Exr => {
+            let layers = ExrLayers {
+                albedo: opts.aovs.then(|| film.albedo()),
+                normal: opts.aovs.then(|| film.normal()),
+                sample_count: opts.sample_counts.then(|| film.sample_count_image()),
+                ..ExrLayers::beauty(film.resolve())
+            };
+            write_exr(path, &layers)
+        }
+    }
+    .map_err(failed(path))?;
+    let mut written = vec![path.to_path_buf()];
+    if let Some(max_samples) = opts.rate_image {
+        let rate = rate_path(path);
+        rate_image(&film.sample_count_image(), max_samples.max(1))
+            .and_then(|image| write_png_display(&rate, &image))
+            .map_err(failed(&rate))?;
+        written.push(rate);
+    }
+    Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rate_image_sits_beside_the_output() {
+        assert_eq!(
+            rate_path(Path::new("out/bunny.exr")),
+            PathBuf::from("out/bunny_rate.png")
+        );
+        assert_eq!(rate_path(Path::new("b.png")), PathBuf::from("b_rate.png"));
+        assert_eq!(
+            OutputFormat::of(Path::new("a.EXR")),
+            Some(OutputFormat::Exr)
+        );
+        assert_eq!(OutputFormat::of(Path::new("a.jpg")), None);
+    }
+
+    #[test]
+    fn an_unknown_extension_writes_nothing() {
+        let dir = candela_testkit::TempDir::new("film-output");
+        let path = dir.path().join("x.jpg");
+        let err = write_film(&path, &Film::new(2, 2), &OutputOptions::default()).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!("{}: the output must end in .png or .exr", path.display())
+        );
+        assert!(!path.exists());
+    }
+}

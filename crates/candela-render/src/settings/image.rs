@@ -1,0 +1,167 @@
+//! The picture: its size, the cell to render, the camera and the light
+//! added around the scene.
+
+use super::{check, SettingsError};
+use crate::camera::framing::CameraMode;
+use crate::film::PixelRect;
+use crate::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// `env_map = "sky"` names the built-in procedural sky (unless a file of
+/// that name exists).
+pub const BUILT_IN_SKY: &str = "sky";
+
+/// What `cell` means (the CLI's `-p`, Python's `cell=`).
+pub const CELL_HELP: &str = "Render only the cell of DX × DY pixels at (X, Y) (y = 0 at the top) \
+    into the full-size image; the rest stays black (CS184 -p; in JSON [x, y, w, h]).";
+
+/// The image settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[serde(default)]
+pub struct ImageSettings {
+    /// Image width in pixels (also `-r W H`).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "W", default_value_t = ImageSettings::default().width))]
+    pub width: u32,
+
+    /// Image height in pixels.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "H", default_value_t = ImageSettings::default().height))]
+    pub height: u32,
+
+    /// The cell to render, or the whole frame: see [`CELL_HELP`].
+    #[cfg_attr(feature = "cli", arg(skip))]
+    pub cell: Option<PixelRect>,
+
+    /// Where the camera comes from: the CS184 orbit framing of the scene's
+    /// bounds, or the file's own camera.
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = ImageSettings::default().camera))]
+    pub camera: CameraMode,
+
+    /// Thin-lens aperture radius in scene units (depth of field; 0 is a
+    /// pinhole).
+    #[cfg_attr(feature = "cli", arg(short = 'b', long, value_name = "RADIUS", default_value_t = ImageSettings::default().aperture))]
+    pub aperture: f32,
+
+    /// Distance from the lens to the plane in focus (default: the framing's
+    /// distance to the scene centre).
+    #[cfg_attr(feature = "cli", arg(short = 'd', long, value_name = "DIST"))]
+    pub focal_distance: Option<f32>,
+
+    /// Environment map: an equirectangular HDR image (.exr, or .png), +Y
+    /// up, lighting the scene from infinitely far away; `sky` is a built-in
+    /// procedural sky with a sun.
+    #[cfg_attr(feature = "cli", arg(short = 'e', long = "env", value_name = "MAP"))]
+    pub env_map: Option<PathBuf>,
+
+    /// Multiplies the environment map's radiance.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "S", default_value_t = ImageSettings::default().env_scale))]
+    pub env_scale: f32,
+
+    /// Turns the environment map about the vertical axis, in degrees.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DEG", default_value_t = ImageSettings::default().env_rotate, allow_negative_numbers = true))]
+    pub env_rotate: f32,
+}
+
+impl Default for ImageSettings {
+    fn default() -> Self {
+        Self {
+            width: 800,
+            height: 600,
+            cell: None,
+            camera: CameraMode::Cs184,
+            aperture: 0.0,
+            focal_distance: None,
+            env_map: None,
+            env_scale: 1.0,
+            env_rotate: 0.0,
+        }
+    }
+}
+
+impl ImageSettings {
+    /// The pixels to render: the cell, or the whole frame.
+    pub fn region(&self) -> PixelRect {
+        self.cell
+            .unwrap_or(PixelRect::full(self.width, self.height))
+    }
+
+    /// Loads the environment map asked for, if any.
+    pub fn environment(&self) -> Result<Option<Arc<EnvironmentMap>>, SettingsError> {
+        let Some(path) = &self.env_map else {
+            return Ok(None);
+        };
+        let options = EnvironmentOptions {
+            scale: self.env_scale,
+            rotate_y_deg: self.env_rotate,
+        };
+        let bad = |err: &dyn std::fmt::Display| {
+            SettingsError::new(format!(
+                "env_map (-e) {}: cannot read the environment map: {err}",
+                path.display()
+            ))
+        };
+        let map = if path.as_os_str() == BUILT_IN_SKY && !path.exists() {
+            let image = ProceduralSky::default()
+                .image(512, 256)
+                .map_err(|e| bad(&e))?;
+            EnvironmentMap::from_image(&image, &options).map_err(|e| bad(&e))?
+        } else {
+            EnvironmentMap::load(path, &options).map_err(|e| bad(&e))?
+        };
+        Ok(Some(Arc::new(map)))
+    }
+
+    pub(super) fn validate(&self) -> Result<(), SettingsError> {
+        let (w, h) = (self.width, self.height);
+        check(
+            w >= 1 && h >= 1,
+            "width, height",
+            "-r",
+            format_args!("{w} {h}"),
+            "the image must not be empty",
+        )?;
+        if let Some(c) = self.cell {
+            check(
+                c.fits_in(w, h),
+                "cell",
+                "-p",
+                format_args!("{} {} {} {}", c.x, c.y, c.width, c.height),
+                format_args!("the cell must be non-empty and inside the {w}x{h} image"),
+            )?;
+        }
+        let a = self.aperture;
+        check(
+            a.is_finite() && a >= 0.0,
+            "aperture",
+            "-b",
+            a,
+            "a radius >= 0",
+        )?;
+        if let Some(d) = self.focal_distance {
+            check(
+                d.is_finite() && d > 0.0,
+                "focal_distance",
+                "-d",
+                d,
+                "a distance > 0",
+            )?;
+        }
+        let s = self.env_scale;
+        check(
+            s.is_finite() && s >= 0.0,
+            "env_scale",
+            "--env-scale",
+            s,
+            "a factor >= 0",
+        )?;
+        check(
+            self.env_rotate.is_finite(),
+            "env_rotate",
+            "--env-rotate",
+            self.env_rotate,
+            "a finite angle in degrees",
+        )
+    }
+}

@@ -1,0 +1,123 @@
+//! What each camera sample computes: the estimator and its options.
+
+use super::{check, SettingsError};
+use crate::integrator::{LightingMode, PathSettings};
+use serde::{Deserialize, Serialize};
+use std::ops::RangeInclusive;
+
+/// The estimator behind each pixel (`--integrator`, or the CS184 flags
+/// `--normals`, `--direct-only`, `--indirect-only`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+pub enum Estimator {
+    /// Path tracing: all light up to the maximum depth.
+    #[default]
+    Path,
+    /// Shading normals as colours (n * 0.5 + 0.5): the CS184 Part 1 view.
+    Normals,
+    /// Light that reached the camera after at most one bounce.
+    Direct,
+    /// Light that reached the camera after two or more bounces.
+    Indirect,
+}
+
+/// Bounce count from which Russian roulette may end a path.
+pub const ROULETTE_FROM: u32 = 3;
+
+/// The integrator's settings, as every front end names them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[serde(default)]
+pub struct IntegratorSettings {
+    /// Estimator: path tracing, or a CS184 view (normals, direct or
+    /// indirect light only).
+    #[serde(rename = "integrator")]
+    #[cfg_attr(feature = "cli", arg(id = "integrator", long = "integrator", value_enum, default_value_t = IntegratorSettings::default().estimator))]
+    pub estimator: Estimator,
+
+    /// How direct light is gathered at each vertex: multiple importance
+    /// sampling of lights and BSDF, light sampling only, or CS184's
+    /// uniform hemisphere rays (`-H`).
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = IntegratorSettings::default().lighting))]
+    pub lighting: LightingMode,
+
+    /// Maximum number of bounces: 0 emitters seen directly, 1 direct
+    /// lighting, 2 one indirect bounce, ...
+    #[cfg_attr(feature = "cli", arg(short = 'm', long, value_name = "N", default_value_t = IntegratorSettings::default().max_depth))]
+    pub max_depth: u32,
+
+    /// Light samples per area light at each path vertex (one per delta
+    /// light); with `-H`, uniform hemisphere rays per vertex.
+    #[cfg_attr(feature = "cli", arg(short = 'l', long, value_name = "N", default_value_t = IntegratorSettings::default().light_samples))]
+    pub light_samples: u32,
+
+    /// 1: add the light of every bounce up to the maximum depth; 0: only
+    /// light after exactly that many bounces (CS184 `-o`).
+    #[cfg_attr(feature = "cli", arg(short = 'o', long, value_name = "0|1", action = clap::ArgAction::Set,
+        value_parser = clap::builder::BoolishValueParser::new(),
+        default_value_t = IntegratorSettings::default().accumulate))]
+    pub accumulate: bool,
+
+    /// Russian roulette on the path throughput from the third bounce on
+    /// (unbiased; `--no-roulette` is `--roulette false`).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", action = clap::ArgAction::Set,
+        value_parser = clap::builder::BoolishValueParser::new(),
+        default_value_t = IntegratorSettings::default().roulette))]
+    pub roulette: bool,
+}
+
+impl Default for IntegratorSettings {
+    fn default() -> Self {
+        Self {
+            estimator: Estimator::Path,
+            lighting: LightingMode::Mis,
+            max_depth: 5,
+            light_samples: 1,
+            accumulate: true,
+            roulette: true,
+        }
+    }
+}
+
+impl IntegratorSettings {
+    /// Path tracing with these options and everything else at its default.
+    pub fn path(max_depth: u32, lighting: LightingMode) -> Self {
+        Self {
+            max_depth,
+            lighting,
+            ..Self::default()
+        }
+    }
+
+    /// Bounce counts whose light reaches the image.
+    pub fn bounces(&self) -> RangeInclusive<u32> {
+        let m = self.max_depth;
+        match self.estimator {
+            Estimator::Direct => 0..=m.min(1),
+            Estimator::Indirect => 2..=m,
+            Estimator::Path | Estimator::Normals if !self.accumulate => m..=m,
+            Estimator::Path | Estimator::Normals => 0..=m,
+        }
+    }
+
+    /// The path tracer's options, or `None` for the normals view.
+    pub fn path_settings(&self) -> Option<PathSettings> {
+        (self.estimator != Estimator::Normals).then(|| PathSettings {
+            bounces: self.bounces(),
+            lighting: self.lighting,
+            light_samples: self.light_samples,
+            roulette_from: self.roulette.then_some(ROULETTE_FROM),
+        })
+    }
+
+    pub(super) fn validate(&self) -> Result<(), SettingsError> {
+        check(
+            self.light_samples >= 1,
+            "light_samples",
+            "-l",
+            self.light_samples,
+            "at least one light sample per vertex",
+        )
+    }
+}

@@ -1,0 +1,58 @@
+//! How the film becomes a displayable picture.
+
+use super::{check, SettingsError};
+use candela_image::{ToneCurve, ToneMap};
+use serde::{Deserialize, Serialize};
+
+/// PNG tone curves (`--tone`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+pub enum Tone {
+    /// Clamp, then the sRGB curve.
+    #[default]
+    Srgb,
+    /// What the CS184 program writes: exposure √2, then gamma 2.2.
+    Cs184,
+    /// ACES filmic (Narkowicz's fit), then sRGB: rolls off highlights.
+    Filmic,
+}
+
+/// The output settings.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[serde(default)]
+pub struct OutputSettings {
+    /// PNG exposure in stops: radiance is scaled by 2^STOPS before the tone
+    /// curve.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "STOPS", default_value_t = OutputSettings::default().exposure, allow_negative_numbers = true))]
+    pub exposure: f32,
+
+    /// PNG tone curve.
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = OutputSettings::default().tone))]
+    pub tone: Tone,
+}
+
+impl OutputSettings {
+    /// The tone map for 8-bit output.
+    pub fn tone_map(&self) -> ToneMap {
+        ToneMap {
+            exposure: self.exposure,
+            curve: match self.tone {
+                Tone::Srgb => ToneCurve::Srgb,
+                Tone::Cs184 => ToneCurve::Cs184,
+                Tone::Filmic => ToneCurve::Filmic,
+            },
+        }
+    }
+
+    pub(super) fn validate(&self) -> Result<(), SettingsError> {
+        check(
+            self.exposure.is_finite(),
+            "exposure",
+            "--exposure",
+            self.exposure,
+            "a finite number of stops",
+        )
+    }
+}

@@ -1,0 +1,198 @@
+use super::*;
+use crate::film::{Adaptive, PixelRect};
+use serde_json::json;
+
+fn changes(v: Value) -> Map<String, Value> {
+    match v {
+        Value::Object(m) => m,
+        _ => panic!("not an object"),
+    }
+}
+
+fn refused(v: Value) -> String {
+    match Settings::from_json(&changes(v.clone())) {
+        Ok(s) => panic!("{v} was accepted as {s:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn defaults_round_trip_through_json() {
+    let d = Settings::default();
+    assert_eq!(Settings::from_json(&d.to_json()).unwrap(), d);
+    assert_eq!(Settings::from_json(&Map::new()).unwrap(), d);
+    assert_eq!(d.sampling.spp(), DEFAULT_SPP);
+    assert_eq!((d.image.width, d.image.height), (800, 600));
+}
+
+#[test]
+fn every_group_is_flat_in_json() {
+    let s = Settings::from_json(&changes(json!({
+        "spp": 64, "max_depth": 3, "width": 320, "height": 240, "exposure": -1.5,
+        "threads": 2, "integrator": "direct", "lighting": "hemisphere",
+        "camera": "file", "bvh": "median", "tone": "filmic", "sampler": "independent",
+        "cell": [10, 20, 30, 40], "adaptive": [32, 0.1]
+    })))
+    .unwrap();
+    assert_eq!(s.sampling.spp, Some(64));
+    assert_eq!(s.integrator.bounces(), 0..=1);
+    assert_eq!(
+        s.integrator.lighting,
+        crate::integrator::LightingMode::Hemisphere
+    );
+    assert_eq!(s.image.cell, Some(PixelRect::new(10, 20, 30, 40)));
+    assert_eq!(
+        s.sampling.adaptive,
+        Some(Adaptive {
+            batch: 32,
+            tolerance: 0.1
+        })
+    );
+    assert_eq!(
+        (s.run.threads, s.run.bvh, s.output.tone),
+        (2, Bvh::Median, Tone::Filmic)
+    );
+    // The JSON of the settings reads back as the same settings.
+    assert_eq!(Settings::from_json(&s.to_json()).unwrap(), s);
+}
+
+#[test]
+fn adaptive_takes_every_documented_form() {
+    let get = |v: Value| {
+        Settings::from_json(&changes(json!({ "adaptive": v })))
+            .unwrap()
+            .sampling
+            .adaptive
+    };
+    assert_eq!(get(json!(true)), Some(Adaptive::default()));
+    assert_eq!(get(json!(false)), None);
+    assert_eq!(get(Value::Null), None);
+    assert_eq!(get(json!(0.2)).unwrap().tolerance, 0.2);
+    assert_eq!(
+        get(json!({"batch": 8, "tolerance": 0.01})),
+        Some(Adaptive {
+            batch: 8,
+            tolerance: 0.01
+        })
+    );
+    assert!(refused(json!({"adaptive": [0.5, 0.05]})).starts_with("adaptive (-a)"));
+    assert!(refused(json!({"adaptive": [64, -1]})).contains("TOL a number >= 0"));
+}
+
+#[test]
+fn unknown_keys_and_wrong_types_are_named() {
+    let e = refused(json!({"spp": 4, "sppp": 4}));
+    assert!(e.starts_with("unknown setting `sppp`"), "{e}");
+    assert!(e.contains("max_depth"), "{e}");
+    let e = refused(json!({"max_depth": "deep"}));
+    assert!(e.starts_with("setting `max_depth` = \"deep\""), "{e}");
+    let e = refused(json!({"integrator": "bdpt"}));
+    assert!(e.starts_with("setting `integrator`"), "{e}");
+}
+
+#[test]
+fn impossible_values_are_refused_with_the_flag() {
+    for (v, start) in [
+        (json!({"spp": 0}), "spp (-s) 0"),
+        (json!({"width": 0}), "width, height (-r) 0 600"),
+        (json!({"focal_distance": 0.0}), "focal_distance (-d) 0"),
+        (json!({"aperture": -0.1}), "aperture (-b) -0.1"),
+        (json!({"light_samples": 0}), "light_samples (-l) 0"),
+        (json!({"time": 0.0}), "time (--time) 0"),
+        (json!({"cell": [790, 0, 20, 10]}), "cell (-p) 790 0 20 10"),
+        (json!({"tile": 0}), "tile (--tile) 0"),
+    ] {
+        let e = refused(v);
+        assert!(e.starts_with(start), "{e} should start with {start}");
+    }
+}
+
+#[test]
+fn non_finite_numbers_are_refused() {
+    // JSON has no NaN; front ends that do (the CLI, Python) fill the struct.
+    let mut s = Settings::default();
+    s.output.exposure = f32::NAN;
+    assert!(s
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .starts_with("exposure (--exposure) NaN"));
+    let mut s = Settings::default();
+    s.image.env_scale = f32::INFINITY;
+    assert!(s.validate().is_err());
+    let mut s = Settings::default();
+    s.sampling.time = Some(f64::NAN);
+    assert!(s.validate().is_err());
+}
+
+#[test]
+fn a_film_that_would_not_fit_is_refused_unless_the_limit_is_raised() {
+    let huge = json!({"width": 100_000, "height": 100_000});
+    let e = refused(huge.clone());
+    assert!(
+        e.starts_with("width, height (-r) 100000 100000: the film would need"),
+        "{e}"
+    );
+    assert!(e.contains("--memory-limit"), "{e}");
+    // The estimate is what the limit compares: 1e10 pixels need far more
+    // than 16 GiB, and a limit above the estimate lets the render through.
+    let need = film_bytes(100_000, 100_000) as f64 / (1u64 << 30) as f64;
+    assert!(need > 1000.0);
+    let mut raised = changes(huge);
+    raised.insert("memory_limit".into(), json!(need * 1.01));
+    assert!(Settings::from_json(&raised).is_ok());
+    // An ordinary HD render is far below the default limit.
+    assert!(film_bytes(1920, 1080) < (1 << 30));
+}
+
+#[test]
+fn cs184_views_map_to_bounce_ranges() {
+    let i = |v: Value| Settings::from_json(&changes(v)).unwrap().integrator;
+    assert_eq!(i(json!({"max_depth": 4})).bounces(), 0..=4);
+    assert_eq!(
+        i(json!({"max_depth": 4, "accumulate": false})).bounces(),
+        4..=4
+    );
+    assert_eq!(
+        i(json!({"max_depth": 4, "integrator": "indirect"})).bounces(),
+        2..=4
+    );
+    assert_eq!(
+        i(json!({"max_depth": 0, "integrator": "direct"})).bounces(),
+        0..=0
+    );
+    assert!(i(json!({"integrator": "normals"}))
+        .path_settings()
+        .is_none());
+    let p = i(json!({"roulette": false})).path_settings().unwrap();
+    assert_eq!(p.roulette_from, None);
+}
+
+#[test]
+fn with_threads_bounds_the_pool() {
+    let mut s = Settings::default();
+    s.run.threads = 1;
+    assert_eq!(s.with_threads(rayon::current_num_threads).unwrap(), 1);
+    s.run.threads = 3;
+    assert_eq!(s.with_threads(rayon::current_num_threads).unwrap(), 3);
+}
+
+#[test]
+fn explicit_settings_beat_scene_hints_which_beat_defaults() {
+    let hints = RenderHints {
+        spp: Some(64),
+        max_depth: Some(9),
+        resolution: Some((320, 200)),
+        file_camera: true,
+    };
+    let s = Settings::resolve(&hints, &changes(json!({"spp": 4, "camera": "cs184"}))).unwrap();
+    assert_eq!(s.sampling.spp, Some(4));
+    assert_eq!(s.image.camera, crate::camera::framing::CameraMode::Cs184);
+    assert_eq!(s.integrator.max_depth, 9);
+    assert_eq!((s.image.width, s.image.height), (320, 200));
+    assert_eq!(s.output, OutputSettings::default());
+    assert_eq!(
+        Settings::resolve(&RenderHints::default(), &Map::new()).unwrap(),
+        Settings::default()
+    );
+}

@@ -1,0 +1,106 @@
+//! Helpers shared by every crate's tests, written once: a temporary folder
+//! that cleans up after itself, a small seeded generator for statistical
+//! tests, and the way to the shared scene corpus beside the repository.
+#![warn(missing_docs)]
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// A fresh, empty folder under the system temporary folder, removed with
+/// its contents when dropped.
+pub struct TempDir(PathBuf);
+
+impl TempDir {
+    /// Creates `candela-<label>-<pid>-<n>`.
+    ///
+    /// # Panics
+    /// If the folder cannot be created (a test environment problem).
+    pub fn new(label: &str) -> Self {
+        static N: AtomicU64 = AtomicU64::new(0);
+        let n = N.fetch_add(1, Ordering::Relaxed);
+        let path = std::env::temp_dir().join(format!("candela-{label}-{}-{n}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).expect("create test folder");
+        Self(path)
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        &self.0
+    }
+
+    /// A path inside the folder.
+    pub fn join(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A small deterministic generator (SplitMix64, Steele et al. 2014) so
+/// statistical tests use fixed seeds without a dependency.
+#[derive(Clone, Debug)]
+pub struct SplitMix64(u64);
+
+impl SplitMix64 {
+    /// A generator seeded with `seed`.
+    pub fn new(seed: u64) -> Self {
+        Self(seed)
+    }
+
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[0, 1)` with 53 bits of precision.
+    pub fn uniform(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// Uniform in `[0, 1)` as an `f32` (24 bits).
+    pub fn uniform_f32(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+    }
+
+    /// Uniform in `[lo, hi)`.
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.uniform()
+    }
+}
+
+/// The folder `shared/` beside the repository (the CS184 corpus and the
+/// benchmark data), found from this crate's location.
+///
+/// # Panics
+/// If it is missing: a test that needs the corpus fails rather than passing
+/// without it.
+pub fn shared_dir() -> PathBuf {
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // crates/candela-testkit -> repository -> its parent.
+    let shared = here.join("../../../shared");
+    assert!(
+        shared.join("scenes").is_dir(),
+        "the shared corpus is missing: expected {} beside the repository (CI lays it there)",
+        shared.display()
+    );
+    shared
+}
+
+/// A CS184 scene of the shared corpus, e.g. `cs184_scene("CBbunny.dae")`.
+///
+/// # Panics
+/// If the corpus or the file is missing.
+pub fn cs184_scene(name: &str) -> PathBuf {
+    let path = shared_dir().join("scenes/cs184").join(name);
+    assert!(path.is_file(), "missing CS184 scene {}", path.display());
+    path
+}
