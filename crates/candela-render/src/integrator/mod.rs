@@ -16,7 +16,8 @@ use crate::film::SampleValue;
 use crate::geometry::Ray;
 use crate::material::Material;
 use crate::sampling::Sampler;
-use crate::scene::{Scene, SurfaceHit};
+use crate::scene::Scene;
+use crate::shape::SurfaceHit;
 use crate::stats::RayCounts;
 use glam::Vec3;
 

@@ -23,8 +23,9 @@ pub struct CameraDesc {
 }
 
 /// The camera models a description can ask for. A renderer keeps square
-/// pixels: when the image's aspect differs from the file's, the vertical
-/// extent is kept and the horizontal one follows the image.
+/// pixels: when the image's aspect differs from the file's, a perspective
+/// camera keeps its vertical field of view and an orthographic one its
+/// width; the other extent follows the image.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Projection {
     /// A pinhole: every ray starts at the eye.
@@ -48,12 +49,11 @@ pub enum Projection {
         focus_distance: f32,
     },
     /// Parallel rays along the view direction through a rectangle of the
-    /// given world-space width centred on the eye.
+    /// given world-space width centred on the eye (its height follows the
+    /// image's aspect).
     Orthographic {
         /// Full width of the view in world units (> 0).
         width: f32,
-        /// Full height of the view in world units (> 0).
-        height: f32,
     },
 }
 

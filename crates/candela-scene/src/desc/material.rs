@@ -53,6 +53,23 @@ pub enum ColorSpace {
     Linear,
 }
 
+impl ColorSpace {
+    /// The convention of an image file's format, for files that name no
+    /// colour space: floating-point formats (`.exr`, `.hdr`, `.pfm`) hold
+    /// linear values, 8-bit ones (PNG, JPEG, ...) sRGB.
+    pub fn of_image_file(path: &std::path::Path) -> ColorSpace {
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        if ["exr", "hdr", "pfm"]
+            .iter()
+            .any(|f| ext.eq_ignore_ascii_case(f))
+        {
+            ColorSpace::Linear
+        } else {
+            ColorSpace::Srgb
+        }
+    }
+}
+
 /// An image texture reference: which file, how to read its values, and a
 /// factor applied to them.
 #[derive(Clone, Debug, PartialEq)]
