@@ -6,8 +6,10 @@
 //! cargo run --release -p candela-render --example instances -- SCENE.dae [N [RAYS]]
 //! ```
 //!
-//! The largest mesh of SCENE is the instanced one. Rays are the camera's
-//! primary rays (CS184 framing of the whole grid), cycled over the image.
+//! The largest mesh of SCENE is the instanced one. Rays are the primary
+//! rays of the one-instance scene's camera (CS184 framing of one mesh),
+//! cycled over the image, and the same rays are traced in every scene: they
+//! see the first instance (at the origin) and whatever lies behind it.
 
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{InstanceDesc, SceneDesc, SourceLoc};
@@ -30,6 +32,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         .max_by_key(|m| m.triangles.len())
         .ok_or("the scene has no mesh")?
         .clone();
+    let mut camera = None;
     for count in [1, n] {
         let mut desc = SceneDesc {
             cameras: loaded.scene.cameras.clone(),
@@ -61,12 +64,13 @@ fn main() -> Result<(), Box<dyn Error>> {
             + tris.triangles.len() * (12 * 3 + 4)
             + tris.normals.len() * 12
             + tris.uvs.len() * 8;
+        let camera = camera.get_or_insert_with(|| scene.camera.clone());
         let mut stats = Default::default();
         let (mut hits, start) = (0u32, Instant::now());
         for i in 0..rays {
             let (x, y) = (i % 400, (i / 400) % 300);
             let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-            let ray = scene.camera.generate_ray(film, Vec2::ZERO);
+            let ray = camera.generate_ray(film, Vec2::ZERO);
             hits += scene.intersect(&ray, &mut stats).is_some() as u32;
         }
         let secs = start.elapsed().as_secs_f64();

@@ -137,6 +137,20 @@ fn triangles_spheres_and_instances_intersect_as_brute_force_does() {
     let desc = mixed_scene(&mut rng);
     let scene = Scene::build(&desc, &SceneOptions::default()).expect("scene builds");
     assert_eq!(scene.primitive_count(), 3 * 40 + 2);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    // A stored mesh that nothing places is not drawn, and the scene says so.
+    let mut unplaced = desc.clone();
+    unplaced.meshes.push(MeshDesc {
+        name: "spare".into(),
+        ..unplaced.meshes[0].clone()
+    });
+    let spare = Scene::build(&unplaced, &SceneOptions::default()).expect("builds");
+    assert_eq!(spare.primitive_count(), scene.primitive_count());
+    assert!(
+        spare.warnings.iter().any(|w| w.contains("'spare'")),
+        "{:?}",
+        spare.warnings
+    );
     let (mut kinds, mut stats) = ([0u32; PrimKind::COUNT], Default::default());
     for k in 0..3000 {
         let o = rng.vec(-9.0, 9.0);

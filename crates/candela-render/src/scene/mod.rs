@@ -125,7 +125,8 @@ impl Scene {
             let grey = candela_scene::MaterialDesc::default_grey();
             materials.push(Material::from_desc(&grey, &mut textures).0);
         }
-        let warnings = textures.into_problems();
+        let mut warnings = textures.into_problems();
+        warnings.extend(unplaced_meshes(desc));
         let (lo, hi) = desc
             .bounds()
             .unwrap_or((glam::Vec3::ZERO, glam::Vec3::ZERO));
@@ -187,6 +188,22 @@ impl Scene {
     pub fn occluded(&self, ray: &Ray, stats: &mut TraversalStats) -> bool {
         self.accel.occluded_counted(ray, stats)
     }
+}
+
+/// One warning per mesh that no instance places (stored but not drawn).
+fn unplaced_meshes(desc: &SceneDesc) -> Vec<String> {
+    let mut placed = vec![false; desc.meshes.len()];
+    for inst in &desc.instances {
+        if let Some(p) = placed.get_mut(inst.mesh) {
+            *p = true;
+        }
+    }
+    desc.meshes
+        .iter()
+        .zip(placed)
+        .filter(|(_, placed)| !placed)
+        .map(|(m, _)| format!("mesh '{}' is placed by no instance: not drawn", m.name))
+        .collect()
 }
 
 /// Sets the thin lens of `opts` on the framed camera.

@@ -4,6 +4,13 @@
 //! root, read `asset/up_axis`, then walk the instanced visual scene, turning
 //! each instance into plain [`crate::desc`] data in Y-up world space.
 //! Dialect notes: `shared/scenes/README.md`.
+//!
+//! Module layout: `nodes` walks the node tree and hands each instance to its
+//! reader (`cameras`, `geometry`, `lights`); all of them write to the scene
+//! under construction in `builder`, which the readers depend on instead of
+//! the walker. Each `<instance_geometry>` is baked into world-space meshes
+//! (one per primitive element) placed by one identity instance each, so the
+//! description holds exactly what the file draws.
 
 mod builder;
 mod cameras;
