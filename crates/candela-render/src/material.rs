@@ -1,11 +1,17 @@
 //! Materials as the renderer uses them: a BSDF (or none, for pure
 //! emitters), an optional emitted radiance, and an optional image texture
 //! for the diffuse colour, looked up at each hit's `uv`.
+//!
+//! The description has a texture slot per parameter
+//! ([`candela_scene::TextureSlot`]); each slot is read here. Only the colour
+//! of a diffuse BSDF is textured so far: every other filled slot is
+//! returned by name as [`Unsupported`] (the scene reports it once), never
+//! dropped silently.
 
 use crate::bsdf::Bsdf;
-use crate::scene::SurfaceHit;
+use crate::shape::SurfaceHit;
 use crate::texture::{ImageTexture, TextureCache};
-use candela_scene::{BsdfDesc, MaterialDesc};
+use candela_scene::{BsdfDesc, MaterialDesc, TextureSlot};
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -19,6 +25,8 @@ pub struct Material {
     /// Diffuse colour by texture (replacing a diffuse BSDF's flat albedo),
     /// shared by every material that names the same file.
     pub diffuse_texture: Option<Arc<ImageTexture>>,
+    /// Factor on the diffuse texture's (linear) values: the slot's scale.
+    pub diffuse_scale: f32,
 }
 
 /// The subset of a description this renderer cannot honour yet, by name.
@@ -64,35 +72,43 @@ impl Material {
             BsdfDesc::Microfacet { alpha, eta, k } => Some(Bsdf::Microfacet { alpha, eta, k }),
             BsdfDesc::Black => None,
         };
-        let diffuse_texture = match (&desc.diffuse_texture, &bsdf) {
-            (None, _) => None,
-            (Some(t), Some(Bsdf::Diffuse { .. })) => textures.get(&t.path),
-            (Some(_), _) => {
-                unsupported.push(Unsupported(format!(
-                    "material '{}': diffuse texture on a non-diffuse BSDF (ignored)",
+        let (mut diffuse_texture, mut diffuse_scale) = (None, 1.0);
+        for (slot, t) in desc.textures.iter() {
+            match (slot, &bsdf) {
+                (TextureSlot::Color, Some(Bsdf::Diffuse { .. })) => {
+                    diffuse_texture = textures.get_in(&t.path, t.color_space);
+                    diffuse_scale = t.scale;
+                }
+                (TextureSlot::Color, _) => unsupported.push(Unsupported(format!(
+                    "material '{}': colour texture on a non-diffuse BSDF (ignored)",
                     desc.name
-                )));
-                None
+                ))),
+                (other, _) => unsupported.push(Unsupported(format!(
+                    "material '{}': {} texture not supported yet (ignored)",
+                    desc.name,
+                    other.name()
+                ))),
             }
-        };
+        }
         let emission = desc.emission.filter(|e| e.max_element() > 0.0);
         (
             Material {
                 bsdf,
                 emission,
                 diffuse_texture,
+                diffuse_scale,
             },
             unsupported,
         )
     }
 
     /// The BSDF at a hit point: a textured diffuse material takes its
-    /// albedo from the texture at the hit's `uv` (clamped to [0, 1] so it
-    /// never creates energy).
+    /// albedo from the texture at the hit's `uv`, times the slot's scale
+    /// (clamped to [0, 1] so it never creates energy).
     pub fn bsdf_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
         match (&self.bsdf, &self.diffuse_texture) {
             (Some(Bsdf::Diffuse { .. }), Some(texture)) => Some(Bsdf::Diffuse {
-                albedo: texture.lookup(hit.uv).clamp(Vec3::ZERO, Vec3::ONE),
+                albedo: (texture.lookup(hit.uv) * self.diffuse_scale).clamp(Vec3::ZERO, Vec3::ONE),
             }),
             _ => self.bsdf,
         }

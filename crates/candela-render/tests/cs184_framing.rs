@@ -39,5 +39,5 @@ fn file_camera_is_the_literal_collada_camera() {
         .world_from_camera
         .transform_point3(glam::Vec3::ZERO);
     assert!((camera.eye - expected_eye).length() < 1e-6);
-    assert!((camera.vfov_deg() - desc.cameras[0].yfov_deg).abs() < 1e-3);
+    assert!((camera.vfov_deg() - desc.cameras[0].fov_deg().unwrap().1).abs() < 1e-3);
 }

@@ -39,6 +39,7 @@ fn sphere_on_plane() -> SceneDesc {
         source: "sphere under the sky".into(),
         cameras: vec![camera],
         meshes: vec![plane],
+        instances: vec![candela_scene::InstanceDesc::identity(0, Default::default())],
         spheres: vec![SphereDesc {
             name: "ball".into(),
             center: Vec3::new(0.0, 1.0, 0.0),

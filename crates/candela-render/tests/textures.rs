@@ -23,7 +23,7 @@ use candela_render::light::{EnvironmentMap, EnvironmentOptions};
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_render::texture::ImageTexture;
-use candela_scene::{BsdfDesc, MaterialDesc, MeshDesc, SceneDesc, TextureDesc};
+use candela_scene::{BsdfDesc, ColorSpace, MaterialDesc, MeshDesc, SceneDesc, TextureRef};
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -75,6 +75,7 @@ fn textured_quad(half: f32, material: MaterialDesc) -> SceneDesc {
         source: "textured quad".into(),
         cameras: vec![common::camera_at(Vec3::ZERO)],
         meshes: vec![mesh],
+        instances: vec![candela_scene::InstanceDesc::identity(0, Default::default())],
         materials: vec![material],
         ..Default::default()
     }
@@ -88,9 +89,7 @@ fn textured(name: &str, path: &Path) -> MaterialDesc {
         },
         None,
     );
-    m.diffuse_texture = Some(TextureDesc {
-        path: path.to_path_buf(),
-    });
+    m.textures.color = Some(TextureRef::new(path, ColorSpace::of_image_file(path)));
     m
 }
 

@@ -49,6 +49,7 @@ fn half_plane(z: f32) -> SceneDesc {
         source: "half plane".into(),
         cameras: vec![common::camera_at(Vec3::ZERO)],
         meshes: vec![mesh],
+        instances: vec![candela_scene::InstanceDesc::identity(0, Default::default())],
         materials: vec![common::material("lamp", BsdfDesc::Black, Some(Vec3::ONE))],
         ..Default::default()
     }

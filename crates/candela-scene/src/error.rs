@@ -1,4 +1,5 @@
-//! The loader's error type: one located, classified problem per failed load.
+//! The error type every loader shares: one located, classified problem per
+//! failed load, printed on one line as `file:line:col: <element>: message`.
 //!
 //! A loader stops at the first error it cannot recover from; everything it can
 //! recover from becomes a [`crate::Warning`] instead. Each class of problem has
@@ -10,21 +11,28 @@ use std::fmt;
 use std::path::PathBuf;
 
 /// Why a scene failed to load. One variant per class of problem.
+///
+/// The kinds are format-neutral: every loader reports an unreadable file, a
+/// bad number or an index past the end with the same kind, so tools can
+/// match on them whatever the format. The few that only make sense for one
+/// family of formats are grouped last.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ErrorKind {
+    // --- Every format ---
     /// The file could not be read.
     Io,
-    /// The text is not well-formed XML.
-    NotXml,
-    /// Well-formed XML whose root element is not `<COLLADA>`.
-    NotCollada,
-    /// The file has a `<!DOCTYPE>` (DTDs and entities are refused outright).
-    Dtd,
-    /// A `#url` reference names no element, or an element of the wrong kind.
-    DanglingUrl,
-    /// A `count` (or the amount a count implies) disagrees with the data.
+    /// The file's extension names no format this crate can load.
+    UnknownFormat,
+    /// A file or array larger than the loader accepts.
+    TooLarge,
+    /// Nesting deeper than the loader accepts.
+    TooDeep,
+    /// A reference (COLLADA `#url`, a material or texture name, a mesh
+    /// index) names nothing, or something of the wrong kind.
+    MissingReference,
+    /// A count (or the amount a count implies) disagrees with the data.
     CountMismatch,
-    /// An index in `<p>` points past the end of its source.
+    /// An index points past the end of what it indexes.
     IndexOutOfRange,
     /// Text that should be a number is not one.
     BadNumber,
@@ -34,17 +42,20 @@ pub enum ErrorKind {
     BadPolygon,
     /// A camera with an impossible field of view, aspect or transform.
     DegenerateCamera,
-    /// Nesting deeper than the loader accepts.
-    TooDeep,
-    /// A file or array larger than the loader accepts.
-    TooLarge,
-    /// A required element or attribute is absent.
+    /// A required element, attribute or field is absent.
     MissingElement,
     /// A value that parses but is outside its domain (unknown `up_axis`,
     /// non-positive radius, zero rotation axis, ...).
     BadValue,
     /// An unsupported feature, reported as an error because of strict mode.
     Unsupported,
+    // --- XML-based formats ---
+    /// The text is not well-formed XML.
+    NotXml,
+    /// Well-formed XML whose root element is not `<COLLADA>`.
+    NotCollada,
+    /// The file has a `<!DOCTYPE>` (DTDs and entities are refused outright).
+    Dtd,
 }
 
 /// A located loading error. `Display` prints one line:

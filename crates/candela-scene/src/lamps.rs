@@ -6,7 +6,7 @@
 
 use crate::desc::{LightKind, SceneDesc};
 use crate::report::Warning;
-use glam::Vec3;
+use glam::{Mat3, Vec3};
 
 /// Relative tolerance on area and radiance, and on the centre distance
 /// measured in units of the lamp's size: loose enough for the files'
@@ -28,18 +28,25 @@ struct Lamp {
 /// per removal.
 pub(crate) fn merge_duplicate_lamps(scene: &mut SceneDesc) -> Vec<Warning> {
     let lamps: Vec<Lamp> = scene
-        .meshes
+        .instances
         .iter()
-        .filter_map(|mesh| {
-            let radiance = scene.materials.get(mesh.material)?.emission?;
+        .filter_map(|inst| {
+            let mesh = scene.meshes.get(inst.mesh)?;
+            let material = inst.material.unwrap_or(mesh.material);
+            let radiance = scene.materials.get(material)?.emission?;
+            let m = inst.world_from_object;
+            let normal_m = Mat3::from_mat4(m).inverse().transpose();
             let (mut area, mut centroid, mut normal) = (0.0, Vec3::ZERO, Vec3::ZERO);
             for (i, t) in mesh.triangles.iter().enumerate() {
-                let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
+                let [a, b, c] = t.map(|k| m.transform_point3(mesh.positions[k as usize]));
                 let cross = (b - a).cross(c - a);
                 let tri_area = 0.5 * cross.length();
                 let mut n = cross.normalize_or_zero();
                 if let Some(ni) = mesh.normal_indices.get(i) {
-                    let authored: Vec3 = ni.iter().map(|&k| mesh.normals[k as usize]).sum();
+                    let authored: Vec3 = ni
+                        .iter()
+                        .map(|&k| normal_m * mesh.normals[k as usize])
+                        .sum();
                     if authored.dot(n) < 0.0 {
                         n = -n;
                     }
@@ -122,8 +129,7 @@ mod tests {
         let mut emitter = MaterialDesc::default_grey();
         emitter.bsdf = BsdfDesc::Black;
         emitter.emission = Some(Vec3::splat(10.0));
-        SceneDesc {
-            meshes: vec![mesh],
+        let mut scene = SceneDesc {
             materials: vec![emitter],
             lights: vec![LightDesc {
                 name: "Light".into(),
@@ -138,7 +144,9 @@ mod tests {
                 loc: SourceLoc { line: 14, col: 5 },
             }],
             ..Default::default()
-        }
+        };
+        scene.add_mesh(mesh);
+        scene
     }
 
     #[test]

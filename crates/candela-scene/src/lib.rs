@@ -1,5 +1,10 @@
 //! Scene descriptions for the Candela path tracer, and the loaders that make them.
 //!
+//! `load(path)` picks the loader by the file's extension (one table, in
+//! `formats.rs`); every loader produces the same format-neutral
+//! [`SceneDesc`] (see [`desc`]) and reports errors with the shared
+//! [`ErrorKind`]s.
+//!
 //! Loading happens in stages (parse, describe, validate); every error carries
 //! the file, `line:col` and the element, and everything a loader ignores is
 //! named once in a [`Report`].
@@ -8,9 +13,11 @@
 mod collada;
 pub mod desc;
 mod error;
+mod formats;
 mod hints;
 mod lamps;
 mod report;
+mod text_file;
 
 pub use desc::*;
 pub use error::{ErrorKind, LoadError};
@@ -43,49 +50,26 @@ pub struct Loaded {
     pub hints: RenderHints,
 }
 
-/// Loads a COLLADA (`.dae`) scene file.
+/// Loads a scene file, choosing the loader by the file's extension
+/// (case-insensitive; see [`supported_formats`]). An unknown extension is an
+/// [`ErrorKind::UnknownFormat`] error naming it and the supported ones.
 ///
 /// Files over 512 MiB are refused before they are read, so a wrong path to a
 /// huge file fails fast.
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
-    let io =
-        |e: std::io::Error| LoadError::whole_file(path.to_path_buf(), ErrorKind::Io, e.to_string());
-    let meta = std::fs::metadata(path).map_err(io)?;
-    if meta.len() > collada::MAX_FILE_BYTES {
-        return Err(LoadError::whole_file(
-            path.to_path_buf(),
-            ErrorKind::TooLarge,
-            format!(
-                "{} bytes exceeds the limit of {}",
-                meta.len(),
-                collada::MAX_FILE_BYTES
-            ),
-        ));
-    }
-    let bytes = std::fs::read(path).map_err(io)?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let loc = collada_loc_of_byte(e.as_bytes(), e.utf8_error().valid_up_to());
-        LoadError {
-            loc: Some(loc),
-            ..LoadError::whole_file(
-                path.to_path_buf(),
-                ErrorKind::NotXml,
-                "not UTF-8 text".into(),
-            )
-        }
-    })?;
-    load_str(&text, path, opts)
+    (formats::format_of(path)?.load)(path, opts)
+}
+
+/// The extensions [`load`] accepts, with their formats, for messages and
+/// help texts: e.g. `.dae (COLLADA)`.
+pub fn supported_formats() -> String {
+    formats::supported()
 }
 
 /// Loads COLLADA text. `source` names the file in messages and is the base
 /// for relative texture paths.
 pub fn load_str(text: &str, source: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
-    let mut loaded = collada::load_str(text, source, opts)?;
-    if !opts.keep_duplicate_lamps {
-        let notes = lamps::merge_duplicate_lamps(&mut loaded.scene);
-        loaded.report.notes.extend(notes);
-    }
-    Ok(loaded)
+    collada::load_str(text, source, opts)
 }
 
 /// The built-in demo scene (`scenes/demo.dae`: a Cornell box with a diffuse
@@ -126,8 +110,3 @@ pub fn demo_scene() -> Loaded {
 
 /// Samples per pixel of the demo unless the user says otherwise.
 pub const DEMO_SPP: u32 = 64;
-
-fn collada_loc_of_byte(bytes: &[u8], byte: usize) -> SourceLoc {
-    let valid = std::str::from_utf8(&bytes[..byte]).unwrap_or("");
-    collada::loc_in(valid, byte)
-}

@@ -163,7 +163,8 @@ fn diffuse_texture_resolves_through_newparams_relative_to_the_file() {
     .unwrap()
     .scene;
     let tex = s.materials[s.spheres[0].material]
-        .diffuse_texture
+        .textures
+        .color
         .clone()
         .unwrap();
     assert_eq!(tex.path, Path::new("/data/scenes/tex/wood.png"));
@@ -182,10 +183,10 @@ fn one_fov_and_aspect_gives_the_other() {
     };
     // tan(45°) = 1, aspect 2: yfov = 2 atan(1/2) = 53.1301°.
     let s = scene("<xfov>90</xfov><aspect_ratio>2</aspect_ratio>");
-    assert!((s.cameras[0].yfov_deg - 53.130_1).abs() < 1e-3);
+    assert!((s.cameras[0].fov_deg().unwrap().1 - 53.130_1).abs() < 1e-3);
     // And back: yfov 53.1301, aspect 2 -> xfov 90.
     let s = scene("<yfov>53.130102</yfov><aspect_ratio>2</aspect_ratio>");
-    assert!((s.cameras[0].xfov_deg - 90.0).abs() < 1e-3);
+    assert!((s.cameras[0].fov_deg().unwrap().0 - 90.0).abs() < 1e-3);
 }
 
 #[test]
@@ -243,4 +244,30 @@ fn demo_scene_is_a_lit_cornell_box() {
         .spheres
         .iter()
         .all(|sp| (sp.radius - 0.3).abs() < 1e-6 && (sp.center.y - 0.3).abs() < 1e-6));
+}
+
+#[test]
+fn load_picks_the_loader_by_extension_and_names_unknown_ones() {
+    let dir = std::env::temp_dir().join(format!("candela-ext-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // An upper-case extension is still COLLADA.
+    let upper = dir.join("tiny.DAE");
+    std::fs::write(
+        &upper,
+        r##"<COLLADA><library_visual_scenes><visual_scene id="s"/></library_visual_scenes></COLLADA>"##,
+    )
+    .unwrap();
+    assert!(candela_scene::load(&upper, &LoadOptions::default()).is_ok());
+    for (name, shown) in [("scene.obj", "\".obj\""), ("scene", "no extension")] {
+        let path = dir.join(name);
+        std::fs::write(&path, "anything").unwrap();
+        let err = candela_scene::load(&path, &LoadOptions::default()).unwrap_err();
+        assert_eq!(err.kind, candela_scene::ErrorKind::UnknownFormat, "{err}");
+        let line = err.to_string();
+        assert!(line.contains(shown), "{line}");
+        assert!(line.contains(".dae (COLLADA)"), "{line}");
+        assert!(line.starts_with(&path.display().to_string()), "{line}");
+        assert!(!line.contains('\n'));
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -14,7 +14,7 @@ fn kind_named(prefix: &str) -> ErrorKind {
         "NotXml" => ErrorKind::NotXml,
         "NotCollada" => ErrorKind::NotCollada,
         "Dtd" => ErrorKind::Dtd,
-        "DanglingUrl" => ErrorKind::DanglingUrl,
+        "DanglingUrl" => ErrorKind::MissingReference,
         "CountMismatch" => ErrorKind::CountMismatch,
         "IndexOutOfRange" => ErrorKind::IndexOutOfRange,
         "BadNumber" => ErrorKind::BadNumber,

@@ -1,16 +1,18 @@
 //! The scene-level acceleration structure: one BVH over all triangles and
 //! spheres, answering closest-hit and shadow queries.
 //!
-//! Primitive ids are stable and independent of the BVH's internal order:
-//! triangles are `0 .. n_tri` in input order, spheres follow in input order.
-//! Primitive data is stored in BVH leaf order, so a leaf's primitives are
+//! A hit names its primitive by [`PrimRef`] (triangle `i` or sphere `j`, in
+//! input order), independent of the BVH's internal order. Primitive data is
+//! stored in BVH leaf order, so a leaf's primitives are
 //! adjacent in memory. The hit record is kept small; shading data (normals,
 //! UVs, error bounds) is computed later from it by the caller with
 //! [`crate::shape::triangle_surface_point`] or
 //! [`crate::shape::sphere_surface_point`].
 
 use crate::geometry::Ray;
-use crate::shape::{intersect_sphere, intersect_triangle, sphere_uv, TriangleRay, TriangleRay4};
+use crate::shape::{
+    intersect_sphere, intersect_triangle, sphere_uv, PrimKind, PrimRef, TriangleRay, TriangleRay4,
+};
 use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, StatsSink};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -24,13 +26,17 @@ mod tests;
 
 use packets::{LeafBlocks, LeafHit};
 
+/// What a padding slot of the 4-wide leaves refers to; never reported, as
+/// padding lanes are masked out of every test.
+const PADDING_REF: PrimRef = PrimRef::triangle(PrimRef::MAX_INDEX);
+
 /// A closest hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     /// Ray parameter.
     pub t: f32,
-    /// Primitive id (triangles first, then spheres; see the module docs).
-    pub prim: u32,
+    /// The primitive hit.
+    pub prim: PrimRef,
     /// Triangle: barycentric weight of `v1`. Sphere: `u = phi / 2pi` around
     /// +Y, a texture coordinate (the normal is `(p - center) / radius`).
     pub b1: f32,
@@ -85,16 +91,23 @@ pub enum Layout {
 enum Tree {
     /// Primitives one per slot.
     Binary(Bvh, Vec<Prim>),
-    /// Primitives in SIMD blocks per leaf.
-    Wide4(Bvh4, LeafBlocks),
+    /// Primitives in SIMD blocks per leaf, and the primitive of each slot.
+    Wide4(Bvh4, LeafBlocks, Vec<PrimRef>),
 }
 
 /// One primitive in leaf order: triangle vertices, or a sphere stored as
-/// `[center, (radius, 0, 0), 0]`; `id >= n_tri` marks a sphere.
+/// `[center, (radius, 0, 0), 0]`.
 #[derive(Clone, Copy, Debug)]
 struct Prim {
     v: [Vec3; 3],
-    id: u32,
+    prim: PrimRef,
+}
+
+/// A primitive's geometry as the leaves store it.
+#[derive(Clone, Copy, Debug)]
+enum Shape {
+    Triangle([Vec3; 3]),
+    Sphere { center: Vec3, radius: f32 },
 }
 
 /// Expands an indexed mesh into one `[v0, v1, v2]` per triangle, checking
@@ -183,11 +196,19 @@ impl Accel {
         let bvh = Bvh::build(&boxes, &centroids, opts);
         drop((boxes, centroids));
         let n_tri = triangles.len() as u32;
-        let prim = |id: u32| match triangles.get(id as usize) {
-            Some(t) => Ok(*t),
-            None => {
-                let (c, r) = spheres[(id - n_tri) as usize];
-                Err((c, r.abs()))
+        // Input (BVH) ids: triangles, then spheres.
+        let refs: Vec<PrimRef> = (0..n_tri)
+            .map(PrimRef::triangle)
+            .chain((0..spheres.len() as u32).map(PrimRef::sphere))
+            .collect();
+        let shape = |p: PrimRef| match p.kind() {
+            PrimKind::Triangle => Shape::Triangle(triangles[p.index() as usize]),
+            PrimKind::Sphere => {
+                let (center, r) = spheres[p.index() as usize];
+                Shape::Sphere {
+                    center,
+                    radius: r.abs(),
+                }
             }
         };
         let (nodes, depth, bvh_bytes, prim_bytes, tree) = match layout {
@@ -195,12 +216,15 @@ impl Accel {
                 let prims: Vec<Prim> = bvh
                     .primitive_order()
                     .iter()
-                    .map(|&id| match prim(id) {
-                        Ok(v) => Prim { v, id },
-                        Err((c, r)) => Prim {
-                            v: [c, Vec3::new(r, 0.0, 0.0), Vec3::ZERO],
-                            id,
-                        },
+                    .map(|&id| {
+                        let prim = refs[id as usize];
+                        match shape(prim) {
+                            Shape::Triangle(v) => Prim { v, prim },
+                            Shape::Sphere { center, radius } => Prim {
+                                v: [center, Vec3::new(radius, 0.0, 0.0), Vec3::ZERO],
+                                prim,
+                            },
+                        }
                     })
                     .collect();
                 let pb = prims.len() * std::mem::size_of::<Prim>();
@@ -215,14 +239,19 @@ impl Accel {
             Layout::Wide4 => {
                 let mut wide = Bvh4::from_binary(bvh);
                 wide.pad_leaves(4);
-                let leaves = LeafBlocks::new(&wide, prim);
-                let pb = leaves.bytes();
+                let slot_refs: Vec<PrimRef> = wide
+                    .primitive_order()
+                    .iter()
+                    .map(|&id| refs.get(id as usize).copied().unwrap_or(PADDING_REF))
+                    .collect();
+                let leaves = LeafBlocks::new(&slot_refs, shape);
+                let pb = leaves.bytes() + slot_refs.len() * std::mem::size_of::<PrimRef>();
                 (
                     wide.nodes().len(),
                     wide.depth(),
                     wide.bytes(),
                     pb,
-                    Tree::Wide4(wide, leaves),
+                    Tree::Wide4(wide, leaves, slot_refs),
                 )
             }
         };
@@ -260,11 +289,11 @@ impl Accel {
     pub fn validate(&self, boxes: &[Aabb]) -> Result<(), String> {
         match &self.tree {
             Tree::Binary(b, _) => b.validate(boxes),
-            Tree::Wide4(w, _) => w.validate(boxes),
+            Tree::Wide4(w, _, _) => w.validate(boxes),
         }
     }
 
-    /// Number of triangles; sphere ids start here.
+    /// Number of triangles.
     pub fn triangle_count(&self) -> u32 {
         self.n_tri
     }
@@ -293,24 +322,24 @@ impl Accel {
                 };
                 let (slot, t) = bvh.closest_hit(&q, ray.t_max, stats, test)?;
                 let p = &prims[slot as usize];
-                if p.id >= self.n_tri {
+                if p.prim.kind() == PrimKind::Sphere {
                     bary = sphere_uv(p.v[0], ray.at(t));
                 }
                 Some(Hit {
                     t,
-                    prim: p.id,
+                    prim: p.prim,
                     b1: bary.0,
                     b2: bary.1,
                 })
             }
-            Tree::Wide4(bvh, leaves) => {
+            Tree::Wide4(bvh, leaves, slot_refs) => {
                 let tr4 = TriangleRay4::new(&tri_ray);
                 let prefetch = |first, count| leaves.prefetch(first, count);
                 let mut hit = LeafHit::default();
                 let test =
                     |first, count, t_max| leaves.closest(first, count, ray, &tr4, t_max, &mut hit);
                 let (slot, t) = bvh.closest_hit_leaves(&q, ray.t_max, stats, prefetch, test)?;
-                let prim = bvh.primitive_order()[slot as usize];
+                let prim = slot_refs[slot as usize];
                 Some(Hit {
                     t,
                     prim,
@@ -334,7 +363,7 @@ impl Accel {
                 };
                 bvh.any_hit(&q, ray.t_max, stats, test)
             }
-            Tree::Wide4(bvh, leaves) => {
+            Tree::Wide4(bvh, leaves, _) => {
                 let tr4 = TriangleRay4::new(&tri_ray);
                 let prefetch = |first, count| leaves.prefetch(first, count);
                 let test = |first, count, t_max| leaves.any(first, count, ray, &tr4, t_max);
@@ -353,12 +382,13 @@ impl Accel {
         t_max: f32,
         bary: &mut (f32, f32),
     ) -> Option<f32> {
-        if p.id < self.n_tri {
-            let h = intersect_triangle(tri_ray, &p.v, t_max)?;
-            *bary = (h.b1, h.b2);
-            Some(h.t)
-        } else {
-            intersect_sphere(ray.origin, ray.dir, p.v[0], p.v[1].x, t_max)
+        match p.prim.kind() {
+            PrimKind::Triangle => {
+                let h = intersect_triangle(tri_ray, &p.v, t_max)?;
+                *bary = (h.b1, h.b2);
+                Some(h.t)
+            }
+            PrimKind::Sphere => intersect_sphere(ray.origin, ray.dir, p.v[0], p.v[1].x, t_max),
         }
     }
 }

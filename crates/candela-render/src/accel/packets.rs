@@ -1,19 +1,21 @@
 //! Leaf primitives of the 4-wide BVH packed four to a block, so a leaf is
 //! tested with SIMD (the layout of Embree's `Triangle4`).
 
+use super::{Shape, PADDING_REF};
 use crate::geometry::Ray;
+use crate::shape::PrimRef;
 use crate::shape::{
     intersect_sphere, intersect_triangle4, occluded_triangle4, sphere_uv, TrianglePacket,
     TriangleRay4,
 };
 use candela_bvh::simd::prefetch;
-use candela_bvh::{Bvh4, PADDING};
 use glam::Vec3;
 
 /// Up to four primitives. A sphere lane keeps its centre in the `v0` rows
 /// and its radius in the `v1.x` row. 160 bytes, 32-byte aligned so that a
-/// block spans three cache lines, not four. Primitive ids are not
-/// stored: the BVH's primitive order maps the winning slot to its id.
+/// block spans three cache lines, not four. Primitive references are
+/// not stored here: the accelerator maps the winning slot to its
+/// [`PrimRef`]. Each kind of shape has its own lane mask.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(32))]
 pub(super) struct Block {
@@ -41,27 +43,25 @@ pub(super) struct LeafHit {
 }
 
 impl LeafBlocks {
-    /// Packs the primitives of `bvh`, whose leaves must be padded to
-    /// multiples of four; `prim(id)` gives a triangle or
-    /// `Err((center, radius))` for a sphere.
-    pub fn new(bvh: &Bvh4, prim: impl Fn(u32) -> Result<[Vec3; 3], (Vec3, f32)>) -> Self {
-        let blocks = bvh
-            .primitive_order()
+    /// Packs the primitives of `slots` (a BVH's leaf order, padded to
+    /// multiples of four with `PADDING_REF`); `shape` gives each one's geometry.
+    pub(super) fn new(slots: &[PrimRef], shape: impl Fn(PrimRef) -> Shape) -> Self {
+        let blocks = slots
             .chunks(4)
             .map(|chunk| {
                 let mut tris = [[Vec3::ZERO; 3]; 4];
                 let (mut tri_lanes, mut sphere_lanes) = (0, 0);
-                for (lane, &id) in chunk.iter().enumerate() {
-                    if id == PADDING {
+                for (lane, &prim) in chunk.iter().enumerate() {
+                    if prim == PADDING_REF {
                         continue;
                     }
-                    match prim(id) {
-                        Ok(t) => {
+                    match shape(prim) {
+                        Shape::Triangle(t) => {
                             tris[lane] = t;
                             tri_lanes |= 1 << lane;
                         }
-                        Err((c, r)) => {
-                            tris[lane] = [c, Vec3::new(r, 0.0, 0.0), Vec3::ZERO];
+                        Shape::Sphere { center, radius } => {
+                            tris[lane] = [center, Vec3::new(radius, 0.0, 0.0), Vec3::ZERO];
                             sphere_lanes |= 1 << lane;
                         }
                     }

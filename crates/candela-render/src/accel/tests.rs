@@ -18,10 +18,10 @@ impl Rng {
     }
 }
 
-/// Closest hit by testing every primitive: (t, id).
-fn brute(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], ray: &Ray) -> Option<(f32, u32)> {
+/// Closest hit by testing every primitive: (t, primitive).
+fn brute(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], ray: &Ray) -> Option<(f32, PrimRef)> {
     let tr = TriangleRay::new(ray.origin, ray.dir);
-    let mut best: Option<(f32, u32)> = None;
+    let mut best: Option<(f32, PrimRef)> = None;
     let mut t_max = ray.t_max;
     let ts = tris
         .iter()
@@ -30,13 +30,13 @@ fn brute(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], ray: &Ray) -> Option<(f32,
     for (i, t) in ts.into_iter().enumerate() {
         if let Some(t) = t.filter(|&t| t < t_max) {
             t_max = t;
-            best = Some((t, i as u32));
+            best = Some((t, PrimRef::triangle(i as u32)));
         }
     }
     for (j, &(c, r)) in spheres.iter().enumerate() {
         if let Some(t) = intersect_sphere(ray.origin, ray.dir, c, r, t_max) {
             t_max = t;
-            best = Some((t, (tris.len() + j) as u32));
+            best = Some((t, PrimRef::sphere(j as u32)));
         }
     }
     best
@@ -84,9 +84,10 @@ fn check(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], rng: &mut Rng, label: &str
             if let (Some(g), Some(w)) = (got, want) {
                 if g.prim != w.1 {
                     // A tie: the reported primitive alone gives the same distance.
-                    let alone = match tris.get(g.prim as usize) {
-                        Some(t) => brute(std::slice::from_ref(t), &[], &ray),
-                        None => brute(&[], &spheres[g.prim as usize - tris.len()..][..1], &ray),
+                    let i = g.prim.index() as usize;
+                    let alone = match g.prim.kind() {
+                        PrimKind::Triangle => brute(&tris[i..=i], &[], &ray),
+                        PrimKind::Sphere => brute(&[], &spheres[i..=i], &ray),
                     };
                     assert_eq!(
                         alone.map(|a| a.0),
@@ -187,5 +188,8 @@ fn indexed_build_reports_bad_indices() {
     let hit = ok
         .intersect(&Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z))
         .unwrap();
-    assert_eq!((hit.t, hit.prim, hit.b1, hit.b2), (1.0, 0, 0.25, 0.25));
+    assert_eq!(
+        (hit.t, hit.prim, hit.b1, hit.b2),
+        (1.0, PrimRef::triangle(0), 0.25, 0.25)
+    );
 }

@@ -6,10 +6,15 @@
 //! render size. Its users' images are made that way, so it is our default for
 //! `.dae` files; [`CameraMode::File`] uses the literal COLLADA camera. The rule,
 //! step by step, is in the project's scene notes (shared/scenes/README.md).
+//!
+//! The file camera's projection is honoured in both modes: a thin lens
+//! brings its aperture and focus distance, an orthographic camera its width
+//! (placed by the orbit rule in [`CameraMode::Cs184`], which only decides
+//! where the eye is for it).
 
 use super::Camera;
-use candela_scene::{CameraDesc, SceneDesc};
-use glam::{Vec3, Vec4};
+use candela_scene::{CameraDesc, Projection, SceneDesc};
+use glam::{Vec2, Vec3, Vec4};
 
 /// How to place the camera.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -52,13 +57,14 @@ pub fn frame_scene(
     if width == 0 || height == 0 {
         return Err(FramingError::Degenerate("image has zero size"));
     }
-    let camera = match mode {
-        CameraMode::Cs184 => cs184_orbit(scene, scene.cameras.first(), width, height)?,
-        CameraMode::File => {
-            let desc = scene.cameras.first().ok_or(FramingError::NoFileCamera)?;
-            file_camera(desc, width, height)?
-        }
+    let file = scene.cameras.first();
+    let mut camera = match mode {
+        CameraMode::Cs184 => cs184_orbit(scene, file, width, height)?,
+        CameraMode::File => file_camera(file.ok_or(FramingError::NoFileCamera)?, width, height)?,
     };
+    if let Some(desc) = file {
+        apply_projection(&mut camera, desc.projection)?;
+    }
     let finite = camera.eye.is_finite()
         && camera.forward.is_finite()
         && camera.right.is_finite()
@@ -86,12 +92,13 @@ fn cs184_orbit(
     }
     // The point one unit in front of the file camera, normalised as if it
     // were a direction: the course program's quirk, kept on purpose.
-    let (d, xfov, yfov) = match file_camera {
+    let (d, (xfov, yfov)) = match file_camera {
         Some(c) => {
             let p = c.world_from_camera * Vec4::new(0.0, 0.0, -1.0, 1.0);
-            (p.truncate(), c.xfov_deg, c.yfov_deg)
+            let fov = c.fov_deg().unwrap_or((DEFAULT_XFOV_DEG, DEFAULT_YFOV_DEG));
+            (p.truncate(), fov)
         }
-        None => (Vec3::Z, DEFAULT_XFOV_DEG, DEFAULT_YFOV_DEG),
+        None => (Vec3::Z, (DEFAULT_XFOV_DEG, DEFAULT_YFOV_DEG)),
     };
     let d = d.try_normalize().unwrap_or(Vec3::Z);
     let phi = d.y.clamp(-1.0, 1.0).acos();
@@ -123,9 +130,44 @@ pub fn cs184_fov(xfov_deg: f32, yfov_deg: f32, width: u32, height: u32) -> (f32,
     (hfov.to_degrees(), vfov.to_degrees())
 }
 
-/// The literal COLLADA camera: node origin, local -Z, local +Y up. The file's
+/// The file's lens or orthographic extent on a placed camera (a pinhole
+/// perspective camera needs nothing more).
+fn apply_projection(camera: &mut Camera, projection: Projection) -> Result<(), FramingError> {
+    match projection {
+        Projection::Perspective { .. } => {}
+        Projection::ThinLens {
+            aperture_radius,
+            focus_distance,
+            ..
+        } => {
+            if !(aperture_radius.is_finite() && aperture_radius >= 0.0) {
+                return Err(FramingError::Degenerate("lens aperture is negative"));
+            }
+            if !(focus_distance.is_finite() && focus_distance > 0.0) {
+                return Err(FramingError::Degenerate("focus distance is not positive"));
+            }
+            camera.lens_radius = aperture_radius;
+            camera.focal_distance = focus_distance;
+        }
+        Projection::Orthographic { width } => {
+            if !(width.is_finite() && width > 0.0) {
+                return Err(FramingError::Degenerate(
+                    "orthographic width is not positive",
+                ));
+            }
+            let half_width = 0.5 * width;
+            let half_height = half_width * camera.height as f32 / camera.width as f32;
+            camera.orthographic = Some(Vec2::new(half_width, half_height));
+        }
+    }
+    Ok(())
+}
+
+/// The literal file camera: node origin, local -Z, local +Y up. The file's
 /// vertical field of view is kept; the horizontal one follows the render's
-/// aspect ratio, so pixels stay square.
+/// aspect ratio, so pixels stay square. (An orthographic camera gets its
+/// extent from [`apply_projection`]; the default field of view set here is
+/// not used by it.)
 fn file_camera(desc: &CameraDesc, width: u32, height: u32) -> Result<Camera, FramingError> {
     let m = desc.world_from_camera;
     let eye = m.transform_point3(Vec3::ZERO);
@@ -134,7 +176,10 @@ fn file_camera(desc: &CameraDesc, width: u32, height: u32) -> Result<Camera, Fra
     if forward.length_squared() == 0.0 || up.cross(forward).length_squared() == 0.0 {
         return Err(FramingError::Degenerate("camera transform is singular"));
     }
-    let tan_y = (desc.yfov_deg.to_radians() * 0.5).tan();
+    let (_, yfov_deg) = desc
+        .fov_deg()
+        .unwrap_or((DEFAULT_XFOV_DEG, DEFAULT_YFOV_DEG));
+    let tan_y = (yfov_deg.to_radians() * 0.5).tan();
     let tan_x = tan_y * width as f32 / height as f32;
     let hfov = 2.0 * tan_x.atan().to_degrees();
     Ok(Camera::look_at(
@@ -142,7 +187,7 @@ fn file_camera(desc: &CameraDesc, width: u32, height: u32) -> Result<Camera, Fra
         eye + forward,
         up,
         hfov,
-        desc.yfov_deg,
+        yfov_deg,
         width,
         height,
     ))

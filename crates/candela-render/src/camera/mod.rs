@@ -2,7 +2,8 @@
 //!
 //! [`Camera`] is a pinhole (or, with a lens radius, thin-lens) perspective
 //! camera described by an eye point, an orthonormal basis and the tangents of
-//! its half fields of view. How it is placed is decided in [`framing`]: the
+//! its half fields of view, or an orthographic one (parallel rays through a
+//! rectangle of half extents [`Camera::orthographic`] around the eye). How it is placed is decided in [`framing`]: the
 //! CS184 orbit rule (the default for `.dae` files, so users see the images
 //! they know) or the literal camera of the file.
 
@@ -35,6 +36,10 @@ pub struct Camera {
     pub lens_radius: f32,
     /// Distance to the plane in focus (used when `lens_radius > 0`).
     pub focal_distance: f32,
+    /// Half width and half height of the view in world units for an
+    /// orthographic camera (whose rays all run along `forward`); `None` for
+    /// a perspective one.
+    pub orthographic: Option<Vec2>,
 }
 
 impl Camera {
@@ -63,7 +68,13 @@ impl Camera {
             height,
             lens_radius: 0.0,
             focal_distance: (target - eye).length(),
+            orthographic: None,
         }
+    }
+
+    /// Whether rays are parallel (see [`Camera::orthographic`]).
+    pub fn is_orthographic(&self) -> bool {
+        self.orthographic.is_some()
     }
 
     /// Horizontal field of view in degrees.
@@ -78,9 +89,16 @@ impl Camera {
 
     /// The ray through film position `film` (in pixels, x to the right, y
     /// down from the top-left corner) and lens sample `u_lens` in [0,1)².
+    /// An orthographic camera has no lens: `u_lens` is not used.
     pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> Ray {
-        let sx = (2.0 * film.x / self.width as f32 - 1.0) * self.tan_half_width;
-        let sy = (1.0 - 2.0 * film.y / self.height as f32) * self.tan_half_height;
+        let nx = 2.0 * film.x / self.width as f32 - 1.0;
+        let ny = 1.0 - 2.0 * film.y / self.height as f32;
+        if let Some(half) = self.orthographic {
+            let origin = self.eye + self.right * (nx * half.x) + self.up * (ny * half.y);
+            return Ray::new(origin, self.forward);
+        }
+        let sx = nx * self.tan_half_width;
+        let sy = ny * self.tan_half_height;
         let dir_cam = Vec3::new(sx, sy, 1.0);
         if self.lens_radius <= 0.0 {
             let dir = self.to_world(dir_cam).normalize();

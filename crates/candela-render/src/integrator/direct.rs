@@ -13,7 +13,8 @@ use crate::geometry::{Frame, Ray};
 use crate::light::LightSample;
 use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
 use crate::sampling::Sampler;
-use crate::scene::{Scene, SurfaceHit};
+use crate::scene::Scene;
+use crate::shape::SurfaceHit;
 use glam::{Vec2, Vec3};
 
 /// Fraction of a shadow ray's length left unchecked at the light's end, so

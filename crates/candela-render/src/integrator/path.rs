@@ -14,7 +14,8 @@ use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::{Frame, Ray};
 use crate::sampling::Sampler;
-use crate::scene::{Scene, SurfaceHit};
+use crate::scene::Scene;
+use crate::shape::SurfaceHit;
 use glam::Vec3;
 use std::ops::RangeInclusive;
 

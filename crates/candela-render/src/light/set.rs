@@ -1,6 +1,7 @@
 //! All the lights of a scene, and how one is chosen for a light sample.
 
 use super::{Light, LightSample};
+use crate::shape::{PrimKind, PrimRef};
 use glam::{Vec2, Vec3};
 
 const NONE: u32 = u32::MAX;
@@ -18,17 +19,27 @@ pub struct LightSet {
     cdf: Vec<f32>,
     /// Selection probability per light (0 for delta lights).
     pmf: Vec<f32>,
-    /// Light index of each emissive primitive, `NONE` for the others.
-    prim_light: Vec<u32>,
+    /// Per primitive kind, the light index of each emissive primitive
+    /// (by index within its kind), `NONE` for the others.
+    prim_light: [Vec<u32>; PrimKind::COUNT],
     /// Surface area per light (0 for lights without one), computed once
     /// instead of per light sample.
     area: Vec<f32>,
 }
 
 impl LightSet {
-    /// Collects `lights`; `prim_light[i]` is `Some(light index)` for each
-    /// emissive primitive `i`. `scene_radius` sizes lights at infinity.
-    pub fn new(lights: Vec<Light>, prim_light: Vec<Option<u32>>, scene_radius: f32) -> Self {
+    /// Collects `lights`; `prim_light` pairs each emissive primitive with
+    /// the index of its light. `scene_radius` sizes lights at infinity.
+    pub fn new(lights: Vec<Light>, prim_light: &[(PrimRef, u32)], scene_radius: f32) -> Self {
+        let mut by_kind: [Vec<u32>; PrimKind::COUNT] = Default::default();
+        for &(prim, light) in prim_light {
+            let table = &mut by_kind[prim.kind() as usize];
+            let i = prim.index() as usize;
+            if table.len() <= i {
+                table.resize(i + 1, NONE);
+            }
+            table[i] = light;
+        }
         let mut delta = Vec::new();
         let mut infinite = Vec::new();
         let mut sampled = Vec::new();
@@ -73,7 +84,7 @@ impl LightSet {
             sampled,
             cdf,
             pmf,
-            prim_light: prim_light.into_iter().map(|l| l.unwrap_or(NONE)).collect(),
+            prim_light: by_kind,
         }
     }
 
@@ -121,8 +132,8 @@ impl LightSet {
     }
 
     /// The light of emissive primitive `prim`, if it is one.
-    pub fn light_of_prim(&self, prim: u32) -> Option<u32> {
-        match self.prim_light.get(prim as usize) {
+    pub fn light_of_prim(&self, prim: PrimRef) -> Option<u32> {
+        match self.prim_light[prim.kind() as usize].get(prim.index() as usize) {
             Some(&l) if l != NONE => Some(l),
             _ => None,
         }
@@ -166,7 +177,7 @@ mod tests {
             position: Vec3::ZERO,
             intensity: Vec3::ONE,
         });
-        let set = LightSet::new(vec![sky(1.0), point, sky(3.0)], vec![], 1.0);
+        let set = LightSet::new(vec![sky(1.0), point, sky(3.0)], &[], 1.0);
         assert_eq!(set.delta_lights().count(), 1);
         assert!((set.pmf(0) - 0.25).abs() < 1e-6);
         assert_eq!(set.pmf(1), 0.0);
@@ -192,7 +203,7 @@ mod tests {
             shape: AreaShape::Triangle { v, normal },
             radiance: Vec3::ONE,
         });
-        let set = LightSet::new(vec![tri.clone()], vec![], 1.0);
+        let set = LightSet::new(vec![tri.clone()], &[], 1.0);
         let mut hits = 0;
         for k in 0..64 {
             let u = Vec2::new((k % 8) as f32 / 8.0 + 0.03, (k / 8) as f32 / 8.0 + 0.05);

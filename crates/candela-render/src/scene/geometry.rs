@@ -1,15 +1,22 @@
-//! Shading data of the scene's triangles and spheres, kept apart from the
-//! acceleration structure: the closest hit is found on compact data, and only
-//! then is the full surface description computed for that one hit.
+//! The scene's primitives, kept apart from the acceleration structure: the
+//! closest hit is found on compact data, and only then is the full surface
+//! description computed for that one hit.
+//!
+//! [`Geometry`] is the one place that maps a [`PrimRef`] to its data: its
+//! material, its surface at a hit, its shape as an emitter. Mesh instances
+//! are flattened here: every instance's triangles are transformed to world
+//! space once, at build time (see `ARCHITECTURE-scene.md` for the figures
+//! behind that choice over a two-level BVH).
 
 use crate::accel::Hit;
 use crate::geometry::Ray;
-use crate::shape;
-use candela_scene::SceneDesc;
-use glam::{Vec2, Vec3};
+use crate::light::AreaShape;
+use crate::shape::{self, PrimKind, PrimRef, SurfaceHit};
+use candela_scene::{InstanceDesc, MeshDesc, SceneDesc};
+use glam::{Mat3, Mat4, Vec2, Vec3};
 
-/// All triangles of the scene, flattened into global arrays (primitive id =
-/// index into `triangles`).
+/// All triangles of the scene, every instance flattened into global arrays
+/// in world space (triangle index = [`PrimRef::index`] of a triangle).
 #[derive(Debug, Default)]
 pub struct TriangleData {
     /// World-space positions.
@@ -39,122 +46,238 @@ pub struct SphereData {
     pub material: u32,
 }
 
+/// Every primitive of the scene, by kind.
+#[derive(Debug, Default)]
+pub struct Geometry {
+    /// Triangles (flattened instances).
+    pub triangles: TriangleData,
+    /// Spheres.
+    pub spheres: Vec<SphereData>,
+}
+
 const NONE: u32 = u32::MAX;
 
-impl TriangleData {
-    /// Flattens the meshes of `desc`.
-    pub fn from_desc(desc: &SceneDesc) -> Self {
-        let mut data = TriangleData::default();
-        for mesh in &desc.meshes {
-            let base_p = data.positions.len() as u32;
-            let base_n = data.normals.len() as u32;
-            let base_uv = data.uvs.len() as u32;
-            data.positions.extend_from_slice(&mesh.positions);
-            data.normals.extend_from_slice(&mesh.normals);
-            data.uvs.extend_from_slice(&mesh.uvs);
-            let offset = |t: [u32; 3], base: u32| t.map(|i| i + base);
-            for (i, &tri) in mesh.triangles.iter().enumerate() {
-                data.triangles.push(offset(tri, base_p));
-                data.normal_indices.push(match mesh.normal_indices.get(i) {
-                    Some(&n) => offset(n, base_n),
-                    None => [NONE; 3],
+/// Why the description's geometry cannot be built.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum GeometryError {
+    /// An instance names a mesh that does not exist.
+    #[error("instance {instance} names mesh {mesh}, but there are {meshes} meshes")]
+    NoSuchMesh {
+        /// Offending instance.
+        instance: usize,
+        /// The mesh it names.
+        mesh: usize,
+        /// Number of meshes.
+        meshes: usize,
+    },
+    /// An instance's transform is singular or not finite.
+    #[error("instance {0} has a singular or non-finite transform")]
+    BadTransform(usize),
+    /// More primitives of one kind than a [`PrimRef`] can name.
+    #[error("{count} {kind:?} primitives exceed the limit of {max}")]
+    TooMany {
+        /// The kind.
+        kind: PrimKind,
+        /// How many there are.
+        count: usize,
+        /// The limit.
+        max: u32,
+    },
+}
+
+impl Geometry {
+    /// Flattens the instances and collects the spheres of `desc`.
+    pub fn from_desc(desc: &SceneDesc) -> Result<Self, GeometryError> {
+        let mut triangles = TriangleData::default();
+        for (i, inst) in desc.instances.iter().enumerate() {
+            let mesh = desc
+                .meshes
+                .get(inst.mesh)
+                .ok_or(GeometryError::NoSuchMesh {
+                    instance: i,
+                    mesh: inst.mesh,
+                    meshes: desc.meshes.len(),
+                })?;
+            triangles.add_instance(mesh, inst, i)?;
+        }
+        let spheres: Vec<SphereData> = desc
+            .spheres
+            .iter()
+            .map(|s| SphereData {
+                center: s.center,
+                radius: s.radius,
+                material: s.material as u32,
+            })
+            .collect();
+        for (kind, count) in [
+            (PrimKind::Triangle, triangles.triangles.len()),
+            (PrimKind::Sphere, spheres.len()),
+        ] {
+            if count > PrimRef::MAX_INDEX as usize {
+                return Err(GeometryError::TooMany {
+                    kind,
+                    count,
+                    max: PrimRef::MAX_INDEX,
                 });
-                data.uv_indices.push(match mesh.uv_indices.get(i) {
-                    Some(&t) => offset(t, base_uv),
-                    None => [NONE; 3],
-                });
-                data.material.push(mesh.material as u32);
             }
         }
-        data
+        Ok(Self { triangles, spheres })
+    }
+
+    /// Number of primitives of every kind.
+    pub fn len(&self) -> usize {
+        self.triangles.triangles.len() + self.spheres.len()
+    }
+
+    /// Whether there are no primitives.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Every primitive, kind by kind.
+    pub fn prims(&self) -> impl Iterator<Item = PrimRef> {
+        let n_tri = self.triangles.triangles.len() as u32;
+        let n_sphere = self.spheres.len() as u32;
+        (0..n_tri)
+            .map(PrimRef::triangle)
+            .chain((0..n_sphere).map(PrimRef::sphere))
+    }
+
+    /// The material index of `prim`.
+    pub fn material(&self, prim: PrimRef) -> u32 {
+        let i = prim.index() as usize;
+        match prim.kind() {
+            PrimKind::Triangle => self.triangles.material[i],
+            PrimKind::Sphere => self.spheres[i].material,
+        }
+    }
+
+    /// `prim` as an emitting surface; `None` for one that can neither be
+    /// hit nor sampled (a zero-area triangle).
+    pub fn emitter_shape(&self, prim: PrimRef) -> Option<AreaShape> {
+        let i = prim.index() as usize;
+        match prim.kind() {
+            PrimKind::Triangle => {
+                let v = self.triangles.corners(i);
+                let normal = self.triangles.emitting_normal(i, v)?;
+                Some(AreaShape::Triangle { v, normal })
+            }
+            PrimKind::Sphere => {
+                let s = &self.spheres[i];
+                Some(AreaShape::Sphere {
+                    center: s.center,
+                    radius: s.radius,
+                })
+            }
+        }
+    }
+
+    /// Computes the surface description for `hit` of `ray`.
+    pub fn surface_hit(&self, ray: &Ray, hit: &Hit) -> SurfaceHit {
+        surface_hit(self, ray, hit)
+    }
+}
+
+impl TriangleData {
+    /// Appends the triangles of `mesh` placed by `inst` (instance number
+    /// `number`, for messages). An identity placement copies the mesh's
+    /// values bit for bit.
+    fn add_instance(
+        &mut self,
+        mesh: &MeshDesc,
+        inst: &InstanceDesc,
+        number: usize,
+    ) -> Result<(), GeometryError> {
+        let m = inst.world_from_object;
+        let base_p = self.positions.len() as u32;
+        let base_n = self.normals.len() as u32;
+        let base_uv = self.uvs.len() as u32;
+        if m == Mat4::IDENTITY {
+            self.positions.extend_from_slice(&mesh.positions);
+            self.normals.extend_from_slice(&mesh.normals);
+        } else {
+            let linear = Mat3::from_mat4(m);
+            let det = linear.determinant();
+            if !m.is_finite() || !det.is_finite() || det == 0.0 {
+                return Err(GeometryError::BadTransform(number));
+            }
+            // Normals transform by the inverse transpose.
+            let normal_m = linear.inverse().transpose();
+            self.positions
+                .extend(mesh.positions.iter().map(|&p| m.transform_point3(p)));
+            self.normals
+                .extend(mesh.normals.iter().map(|&n| (normal_m * n).normalize_or(n)));
+        }
+        self.uvs.extend_from_slice(&mesh.uvs);
+        let material = inst.material.unwrap_or(mesh.material) as u32;
+        let offset = |t: [u32; 3], base: u32| t.map(|i| i.saturating_add(base));
+        for (i, &tri) in mesh.triangles.iter().enumerate() {
+            self.triangles.push(offset(tri, base_p));
+            self.normal_indices.push(match mesh.normal_indices.get(i) {
+                Some(&n) => offset(n, base_n),
+                None => [NONE; 3],
+            });
+            self.uv_indices.push(match mesh.uv_indices.get(i) {
+                Some(&t) => offset(t, base_uv),
+                None => [NONE; 3],
+            });
+            self.material.push(material);
+        }
+        Ok(())
     }
 
     /// The three corners of triangle `i`.
     pub fn corners(&self, i: usize) -> [Vec3; 3] {
         self.triangles[i].map(|v| self.positions[v as usize])
     }
-}
 
-/// Everything the integrators need to know about a hit point.
-#[derive(Clone, Copy, Debug)]
-pub struct SurfaceHit {
-    /// World position.
-    pub p: Vec3,
-    /// Bound on the absolute error of `p` per axis.
-    pub p_error: Vec3,
-    /// Unit geometric normal, flipped to the side the ray came from.
-    pub ng: Vec3,
-    /// Unit shading normal as the surface defines it (not flipped toward
-    /// the ray): BSDF frames are built on it, so dielectrics can tell
-    /// entering from leaving.
-    pub ns: Vec3,
-    /// Texture coordinates.
-    pub uv: Vec2,
-    /// Material index.
-    pub material: u32,
-    /// Primitive id (triangles first, then spheres).
-    pub prim: u32,
-    /// Unit direction back toward the ray origin.
-    pub wo: Vec3,
-    /// Whether the ray arrived on the side the surface's own normal points
-    /// to (the side an emitter emits on).
-    pub front_face: bool,
-    /// Ray parameter of the hit.
-    pub t: f32,
-}
-
-impl SurfaceHit {
-    /// The shading normal flipped to the side the ray came from.
-    pub fn ns_facing(&self) -> Vec3 {
-        if self.front_face {
-            self.ns
-        } else {
-            -self.ns
+    /// The unit normal on the side triangle `i` emits toward: its authored
+    /// normals' side when it has them (the files' winding does not always
+    /// agree with them), else its winding's.
+    fn emitting_normal(&self, i: usize, v: [Vec3; 3]) -> Option<Vec3> {
+        let ng = (v[1] - v[0]).cross(v[2] - v[0]).try_normalize()?;
+        let ni = self.normal_indices[i];
+        if ni[0] == NONE {
+            return Some(ng);
         }
-    }
-
-    /// Origin for a ray leaving this point in direction `w`, offset past the
-    /// error bound so that it cannot re-hit this surface.
-    pub fn spawn_origin(&self, w: Vec3) -> Vec3 {
-        shape::offset_ray_origin(self.p, self.p_error, self.ng, w)
+        let authored: Vec3 = ni.iter().map(|&k| self.normals[k as usize]).sum();
+        Some(if authored.dot(ng) < 0.0 { -ng } else { ng })
     }
 }
 
 /// Computes the surface description for `hit` of `ray`.
-pub fn surface_hit(
-    tris: &TriangleData,
-    spheres: &[SphereData],
-    ray: &Ray,
-    hit: &Hit,
-) -> SurfaceHit {
+fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
     let wo = -ray.dir.normalize();
-    let n_tri = tris.triangles.len() as u32;
-    let (p, p_error, ng_raw, ns_raw, uv, material) = if hit.prim < n_tri {
-        let i = hit.prim as usize;
-        let [v0, v1, v2] = tris.corners(i);
-        let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
-        let sp = shape::triangle_surface_point(&[v0, v1, v2], hit.b1, hit.b2);
-        let (p, p_error, ng) = (sp.p, sp.p_error, sp.n);
-        let ni = tris.normal_indices[i];
-        let ns = if ni[0] == NONE {
-            ng
-        } else {
-            let n = ni.map(|k| tris.normals[k as usize]);
-            (b[0] * n[0] + b[1] * n[1] + b[2] * n[2]).normalize_or(ng)
-        };
-        let ti = tris.uv_indices[i];
-        let uv = if ti[0] == NONE {
-            Vec2::new(hit.b1, hit.b2)
-        } else {
-            let t = ti.map(|k| tris.uvs[k as usize]);
-            b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
-        };
-        (p, p_error, ng, ns, uv, tris.material[i])
-    } else {
-        let s = &spheres[(hit.prim - n_tri) as usize];
-        let sp = shape::sphere_surface_point(s.center, s.radius, ray, hit.t);
-        let uv = Vec2::new(hit.b1, hit.b2);
-        (sp.p, sp.p_error, sp.n, sp.n, uv, s.material)
+    let i = hit.prim.index() as usize;
+    let (p, p_error, ng_raw, ns_raw, uv, material) = match hit.prim.kind() {
+        PrimKind::Triangle => {
+            let tris = &geometry.triangles;
+            let [v0, v1, v2] = tris.corners(i);
+            let b = [1.0 - hit.b1 - hit.b2, hit.b1, hit.b2];
+            let sp = shape::triangle_surface_point(&[v0, v1, v2], hit.b1, hit.b2);
+            let (p, p_error, ng) = (sp.p, sp.p_error, sp.n);
+            let ni = tris.normal_indices[i];
+            let ns = if ni[0] == NONE {
+                ng
+            } else {
+                let n = ni.map(|k| tris.normals[k as usize]);
+                (b[0] * n[0] + b[1] * n[1] + b[2] * n[2]).normalize_or(ng)
+            };
+            let ti = tris.uv_indices[i];
+            let uv = if ti[0] == NONE {
+                Vec2::new(hit.b1, hit.b2)
+            } else {
+                let t = ti.map(|k| tris.uvs[k as usize]);
+                b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
+            };
+            (p, p_error, ng, ns, uv, tris.material[i])
+        }
+        PrimKind::Sphere => {
+            let s = &geometry.spheres[i];
+            let sp = shape::sphere_surface_point(s.center, s.radius, ray, hit.t);
+            let uv = Vec2::new(hit.b1, hit.b2);
+            (sp.p, sp.p_error, sp.n, sp.n, uv, s.material)
+        }
     };
     // Emitters emit on the side their authored (shading) normals point to;
     // the files' winding does not always agree with those normals.

@@ -1,20 +1,22 @@
 //! The render-ready scene: the only module that reads a `SceneDesc`.
 //!
 //! [`Scene::build`] turns the plain description into an immutable, `Sync`
-//! structure: flattened geometry, the acceleration structure, materials,
+//! structure: the geometry (instances flattened, every primitive named by a
+//! [`crate::shape::PrimRef`]), the acceleration structure, materials,
 //! lights and the camera. Integrators only see this.
 
 mod geometry;
 mod lights;
 
-pub use geometry::{SphereData, SurfaceHit, TriangleData};
+pub use geometry::{Geometry, GeometryError, SphereData, TriangleData};
 
 use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
 use crate::camera::Camera;
 use crate::geometry::Ray;
 use crate::light::{EnvironmentMap, LightSet};
-pub use crate::material::Material;
+use crate::material::Material;
+use crate::shape::SurfaceHit;
 use crate::texture::TextureCache;
 use candela_bvh::BuildStrategy;
 use candela_bvh::TraversalStats;
@@ -33,12 +35,13 @@ pub struct SceneOptions {
     pub camera_mode: CameraMode,
     /// BVH construction strategy.
     pub bvh: BuildStrategy,
-    /// Thin-lens aperture radius in world units (CS184 `-b`); 0 is a
-    /// pinhole. Applied after framing, so it works with either camera mode.
+    /// Thin-lens aperture radius in world units (CS184 `-b`); 0 keeps the
+    /// file camera's lens (a pinhole unless the file describes a thin
+    /// lens). Applied after framing, so it works with either camera mode.
     pub lens_radius: f32,
     /// Distance from the eye to the plane in focus, along the view
-    /// direction (CS184 `-d`); `None` keeps the framing's (the distance to
-    /// the camera's target).
+    /// direction (CS184 `-d`); `None` keeps the framing's (the file's thin
+    /// lens focus distance, else the distance to the camera's target).
     pub focal_distance: Option<f32>,
     /// An environment map lighting the scene from infinity, in addition to
     /// the file's own lights (CS184 `-e`).
@@ -68,6 +71,9 @@ pub enum SceneError {
     /// The geometry is inconsistent.
     #[error("geometry: {0}")]
     Geometry(#[from] AccelError),
+    /// An instance cannot be placed.
+    #[error("instances: {0}")]
+    Instances(#[from] GeometryError),
     /// A lens setting is negative or not finite.
     #[error("lens: {0}")]
     Lens(String),
@@ -77,10 +83,8 @@ pub enum SceneError {
 pub struct Scene {
     /// The camera.
     pub camera: Camera,
-    /// Triangle shading data.
-    pub triangles: TriangleData,
-    /// Spheres.
-    pub spheres: Vec<SphereData>,
+    /// Every primitive's data, by kind.
+    pub geometry: Geometry,
     /// Materials, indexed by the primitives' material ids.
     pub materials: Vec<Material>,
     /// Light sources, including emissive primitives.
@@ -101,16 +105,7 @@ impl Scene {
     pub fn build(desc: &SceneDesc, opts: &SceneOptions) -> Result<Scene, SceneError> {
         let mut camera = frame_scene(desc, opts.camera_mode, opts.width, opts.height)?;
         apply_lens(&mut camera, opts)?;
-        let triangles = TriangleData::from_desc(desc);
-        let spheres: Vec<SphereData> = desc
-            .spheres
-            .iter()
-            .map(|s| SphereData {
-                center: s.center,
-                radius: s.radius,
-                material: s.material as u32,
-            })
-            .collect();
+        let geometry = Geometry::from_desc(desc)?;
         let mut unsupported: Vec<String> = Vec::new();
         let mut textures = TextureCache::new();
         let mut materials: Vec<Material> = desc
@@ -130,32 +125,35 @@ impl Scene {
             let grey = candela_scene::MaterialDesc::default_grey();
             materials.push(Material::from_desc(&grey, &mut textures).0);
         }
-        let warnings = textures.into_problems();
+        let mut warnings = textures.into_problems();
+        warnings.extend(unplaced_meshes(desc));
         let (lo, hi) = desc
             .bounds()
             .unwrap_or((glam::Vec3::ZERO, glam::Vec3::ZERO));
         let scene_radius = 0.5 * (hi - lo).length();
         let lights = lights::build_lights(
             desc,
-            &triangles,
-            &spheres,
+            &geometry,
             &materials,
             opts.environment.as_ref(),
             scene_radius,
         );
         let start = Instant::now();
-        let sphere_shapes: Vec<_> = spheres.iter().map(|s| (s.center, s.radius)).collect();
+        let sphere_shapes: Vec<_> = geometry
+            .spheres
+            .iter()
+            .map(|s| (s.center, s.radius))
+            .collect();
         let accel = Accel::build_indexed(
-            &triangles.positions,
-            &triangles.triangles,
+            &geometry.triangles.positions,
+            &geometry.triangles.triangles,
             &sphere_shapes,
             opts.bvh,
         )?;
         let build_time = start.elapsed();
         Ok(Scene {
             camera,
-            triangles,
-            spheres,
+            geometry,
             materials,
             lights,
             unsupported,
@@ -170,9 +168,9 @@ impl Scene {
         &self.materials[i as usize]
     }
 
-    /// Number of primitives (triangles and spheres).
+    /// Number of primitives (of every kind).
     pub fn primitive_count(&self) -> usize {
-        self.triangles.triangles.len() + self.spheres.len()
+        self.geometry.len()
     }
 
     /// Statistics of the acceleration structure.
@@ -183,18 +181,29 @@ impl Scene {
     /// The closest surface along `ray`, if any.
     pub fn intersect(&self, ray: &Ray, stats: &mut TraversalStats) -> Option<SurfaceHit> {
         let hit = self.accel.intersect_counted(ray, stats)?;
-        Some(geometry::surface_hit(
-            &self.triangles,
-            &self.spheres,
-            ray,
-            &hit,
-        ))
+        Some(self.geometry.surface_hit(ray, &hit))
     }
 
     /// Whether anything blocks `ray` before its `t_max`.
     pub fn occluded(&self, ray: &Ray, stats: &mut TraversalStats) -> bool {
         self.accel.occluded_counted(ray, stats)
     }
+}
+
+/// One warning per mesh that no instance places (stored but not drawn).
+fn unplaced_meshes(desc: &SceneDesc) -> Vec<String> {
+    let mut placed = vec![false; desc.meshes.len()];
+    for inst in &desc.instances {
+        if let Some(p) = placed.get_mut(inst.mesh) {
+            *p = true;
+        }
+    }
+    desc.meshes
+        .iter()
+        .zip(placed)
+        .filter(|(_, placed)| !placed)
+        .map(|(m, _)| format!("mesh '{}' is placed by no instance: not drawn", m.name))
+        .collect()
 }
 
 /// Sets the thin lens of `opts` on the framed camera.
@@ -205,7 +214,14 @@ fn apply_lens(camera: &mut Camera, opts: &SceneOptions) -> Result<(), SceneError
             opts.lens_radius
         )));
     }
-    camera.lens_radius = opts.lens_radius;
+    if opts.lens_radius > 0.0 {
+        if camera.is_orthographic() {
+            return Err(SceneError::Lens(
+                "an orthographic camera has no lens (aperture must be 0)".into(),
+            ));
+        }
+        camera.lens_radius = opts.lens_radius;
+    }
     if let Some(d) = opts.focal_distance {
         if !(d.is_finite() && d > 0.0) {
             return Err(SceneError::Lens(format!(

@@ -1,13 +1,18 @@
 //! Ray–shape intersection: triangles and spheres, and the surface points
 //! with error bounds from which new rays are spawned without self-hits.
+//! [`PrimRef`] names one primitive of a scene by kind and index.
 
 mod generate;
+mod hit;
+mod prim;
 mod sphere;
 mod surface;
 mod triangle;
 mod triangle4;
 
 pub use generate::icosphere;
+pub use hit::SurfaceHit;
+pub use prim::{PrimKind, PrimRef};
 pub use sphere::{intersect_sphere, sphere_surface_point, sphere_uv};
 pub use surface::{gamma, offset_ray_origin, spawn_ray, SurfacePoint};
 pub use triangle::{intersect_triangle, triangle_surface_point, TriangleHit, TriangleRay};

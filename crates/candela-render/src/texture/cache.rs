@@ -1,7 +1,8 @@
 //! Textures are loaded once per file, however many materials use them, and
 //! a file that cannot be read is reported once.
 
-use super::ImageTexture;
+use super::{native_color_space, ImageTexture};
+use candela_scene::ColorSpace;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -9,7 +10,7 @@ use std::sync::Arc;
 /// The textures of one scene build, by path.
 #[derive(Debug, Default)]
 pub struct TextureCache {
-    loaded: HashMap<PathBuf, Option<Arc<ImageTexture>>>,
+    loaded: HashMap<(PathBuf, ColorSpace), Option<Arc<ImageTexture>>>,
     problems: Vec<String>,
 }
 
@@ -22,21 +23,33 @@ impl TextureCache {
     /// The texture at `path`, read on first use; `None` if it cannot be
     /// read, with the reason recorded in [`TextureCache::problems`] the
     /// first time only.
+    /// The file is read in its format's own colour space (PNG sRGB, EXR
+    /// linear).
     pub fn get(&mut self, path: &Path) -> Option<Arc<ImageTexture>> {
-        if let Some(entry) = self.loaded.get(path) {
+        self.get_in(path, native_color_space(path))
+    }
+
+    /// [`TextureCache::get`] with the stored values taken as `color_space`
+    /// (a PNG of roughness values is linear data, not sRGB colour).
+    pub fn get_in(&mut self, path: &Path, color_space: ColorSpace) -> Option<Arc<ImageTexture>> {
+        let key = (path.to_path_buf(), color_space);
+        if let Some(entry) = self.loaded.get(&key) {
             return entry.clone();
         }
-        let entry = match ImageTexture::load(path) {
+        let entry = match ImageTexture::load_in(path, color_space) {
             Ok(t) => Some(Arc::new(t)),
             Err(e) => {
-                self.problems.push(format!(
+                let message = format!(
                     "texture {} cannot be used ({e}); using the flat colour",
                     path.display()
-                ));
+                );
+                if !self.problems.contains(&message) {
+                    self.problems.push(message);
+                }
                 None
             }
         };
-        self.loaded.insert(path.to_path_buf(), entry.clone());
+        self.loaded.insert(key, entry.clone());
         entry
     }
 

@@ -7,15 +7,17 @@
 //! addressing wraps around (the image tiles the plane), so `u = 1.25` reads
 //! what `u = 0.25` reads.
 //!
-//! Images are read once per path ([`TextureCache`]) through candela-image,
-//! whose readers decode PNG from sRGB and take EXR as linear: texels are
-//! linear RGB.
+//! Images are read once per path and colour space ([`TextureCache`])
+//! through candela-image, whose readers decode PNG from sRGB and take EXR as
+//! linear; a description that declares another [`ColorSpace`] for a file
+//! (linear data in a PNG) has that undone. Texels are linear RGB.
 
 mod cache;
 
 pub use cache::TextureCache;
 
-use candela_image::{read_exr, read_png, ImageError, RgbImage};
+use candela_image::{read_exr, read_png, srgb_decode, srgb_encode, ImageError, RgbImage};
+use candela_scene::ColorSpace;
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -44,6 +46,20 @@ pub fn read_linear_image(path: &Path) -> Result<RgbImage, TextureError> {
         Some("png") => Ok(read_png(path)?),
         Some("exr") => Ok(read_exr(path)?),
         _ => Err(TextureError::UnknownFormat(path.to_path_buf())),
+    }
+}
+
+/// The colour space candela-image's reader assumes for `path`'s format:
+/// sRGB for PNG, linear otherwise (EXR).
+pub fn native_color_space(path: &Path) -> ColorSpace {
+    let png = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if png {
+        ColorSpace::Srgb
+    } else {
+        ColorSpace::Linear
     }
 }
 
@@ -85,6 +101,24 @@ impl ImageTexture {
     /// Reads a PNG or EXR file (see [`read_linear_image`]).
     pub fn load(path: &Path) -> Result<Self, TextureError> {
         Self::from_image(&read_linear_image(path)?)
+    }
+
+    /// Reads a PNG or EXR file whose stored values are in `color_space`.
+    pub fn load_in(path: &Path, color_space: ColorSpace) -> Result<Self, TextureError> {
+        let mut texture = Self::load(path)?;
+        let convert: Option<fn(f32) -> f32> = match (native_color_space(path), color_space) {
+            // The reader decoded sRGB that was really linear data: undo it.
+            (ColorSpace::Srgb, ColorSpace::Linear) => Some(srgb_encode),
+            // The reader took as linear what is sRGB-encoded.
+            (ColorSpace::Linear, ColorSpace::Srgb) => Some(srgb_decode),
+            _ => None,
+        };
+        if let Some(f) = convert {
+            for t in &mut texture.texels {
+                *t = Vec3::new(f(t.x), f(t.y), f(t.z));
+            }
+        }
+        Ok(texture)
     }
 
     /// Width and height in texels.

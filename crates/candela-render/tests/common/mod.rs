@@ -9,8 +9,8 @@ use candela_render::integrator::IntegratorSettings;
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{
-    BsdfDesc, CameraDesc, LightDesc, LightKind, MaterialDesc, MeshDesc, SceneDesc, SourceLoc,
-    SphereDesc,
+    BsdfDesc, CameraDesc, LightDesc, LightKind, MaterialDesc, MeshDesc, Projection, SceneDesc,
+    SourceLoc, SphereDesc,
 };
 use glam::{Mat4, Vec3};
 
@@ -28,7 +28,7 @@ pub fn material(name: &str, bsdf: BsdfDesc, emission: Option<Vec3>) -> MaterialD
         name: name.into(),
         bsdf,
         emission,
-        diffuse_texture: None,
+        textures: Default::default(),
         loc: SourceLoc::default(),
     }
 }
@@ -38,8 +38,10 @@ pub fn camera_at(eye: Vec3) -> CameraDesc {
     CameraDesc {
         name: "test".into(),
         world_from_camera: Mat4::from_translation(eye),
-        xfov_deg: 60.0,
-        yfov_deg: 60.0,
+        projection: Projection::Perspective {
+            xfov_deg: 60.0,
+            yfov_deg: 60.0,
+        },
         znear: None,
         zfar: None,
         loc: SourceLoc::default(),
@@ -63,6 +65,7 @@ pub fn furnace(albedo: f32, le: f32) -> SceneDesc {
         source: "furnace".into(),
         cameras: vec![camera_at(Vec3::ZERO)],
         meshes: vec![mesh],
+        instances: vec![candela_scene::InstanceDesc::identity(0, Default::default())],
         materials: vec![material(
             "wall",
             BsdfDesc::Diffuse {

@@ -1,9 +1,9 @@
 //! `<instance_camera>`: the perspective optics and the camera's world transform.
 
-use super::nodes::Builder;
+use super::builder::Builder;
 use super::numbers::float;
 use super::xml::{child, require, Ctx, XNode};
-use crate::desc::CameraDesc;
+use crate::desc::{CameraDesc, Projection};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4};
 
@@ -78,8 +78,10 @@ pub(crate) fn instance(ctx: &Ctx, b: &mut Builder, inst: XNode, m: Mat4) -> Resu
             .unwrap_or("camera")
             .to_string(),
         world_from_camera: m,
-        xfov_deg: x,
-        yfov_deg: y,
+        projection: Projection::Perspective {
+            xfov_deg: x,
+            yfov_deg: y,
+        },
         znear: get("znear")?.map(|(v, _)| v),
         zfar: get("zfar")?.map(|(v, _)| v),
         loc: ctx.loc(inst),

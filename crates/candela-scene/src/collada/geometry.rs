@@ -1,7 +1,7 @@
 //! `<instance_geometry>`: material bindings, meshes (one [`crate::MeshDesc`]
 //! per primitive element) and CGL spheres.
 
-use super::nodes::Builder;
+use super::builder::Builder;
 use super::numbers::float;
 use super::sources::SourceCache;
 use super::xml::{child, children, elements, require, technique, Ctx, XNode};
@@ -102,7 +102,7 @@ fn read_mesh(
             None => b.default_material(),
         };
         let mesh = mesh::build(ctx, &mut sources, &prim, m, name.to_string(), material)?;
-        b.scene.meshes.push(mesh);
+        b.add_world_mesh(mesh);
     }
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! `<instance_light>`: the light's technique (CGL, then `technique_common`,
 //! then `blender`) and its placement by the node transform.
 
-use super::nodes::Builder;
+use super::builder::Builder;
 use super::numbers::{float, vec3};
 use super::xml::{child, elements, require, technique, text, Ctx, XNode};
 use crate::desc::{LightDesc, LightKind};

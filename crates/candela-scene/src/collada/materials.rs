@@ -7,7 +7,7 @@
 
 use super::numbers::{float, vec3};
 use super::xml::{child, children, elements, require, text, Ctx, XNode};
-use crate::desc::{BsdfDesc, MaterialDesc, TextureDesc};
+use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, TextureRef, TextureSlot};
 use crate::error::LoadError;
 use glam::Vec3;
 use std::path::PathBuf;
@@ -111,7 +111,12 @@ fn common_profile(ctx: &Ctx, effect: XNode, desc: &mut MaterialDesc) -> Result<(
         // The albedo stays 0.5 grey: it is what a renderer uses if the image
         // cannot be read.
         match texture_path(ctx, profile, t) {
-            Some(path) => desc.diffuse_texture = Some(TextureDesc { path }),
+            // COLLADA names no colour space: the image format's own.
+            Some(path) => {
+                let space = ColorSpace::of_image_file(&path);
+                desc.textures
+                    .set(TextureSlot::Color, TextureRef::new(path, space));
+            }
             None => ctx.warn(t, "texture reference could not be resolved; ignored")?,
         }
     }

@@ -4,7 +4,15 @@
 //! root, read `asset/up_axis`, then walk the instanced visual scene, turning
 //! each instance into plain [`crate::desc`] data in Y-up world space.
 //! Dialect notes: `shared/scenes/README.md`.
+//!
+//! Module layout: `nodes` walks the node tree and hands each instance to its
+//! reader (`cameras`, `geometry`, `lights`); all of them write to the scene
+//! under construction in `builder`, which the readers depend on instead of
+//! the walker. Each `<instance_geometry>` is baked into world-space meshes
+//! (one per primitive element) placed by one identity instance each, so the
+//! description holds exactly what the file draws.
 
+mod builder;
 mod cameras;
 mod geometry;
 mod lights;
@@ -18,17 +26,21 @@ mod transform;
 mod xml;
 
 use crate::error::{ErrorKind, LoadError};
+use crate::text_file::MAX_FILE_BYTES;
 use crate::{LoadOptions, Loaded};
 use std::path::Path;
 use transform::UpAxis;
-pub(crate) use xml::loc_in;
 use xml::{child, text, Ctx};
 
-/// Largest scene file accepted, in bytes.
-pub(crate) const MAX_FILE_BYTES: u64 = 512 << 20;
+/// Reads and loads a COLLADA file (the entry of [`crate::formats`]).
+pub(crate) fn load_file(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
+    let text = crate::text_file::read_text(path)?;
+    load_str(&text, path, opts)
+}
 
 /// Loads COLLADA text; `source` names the file in messages and anchors
-/// relative texture paths.
+/// relative texture paths. The CS184 files' doubled lamp is merged unless
+/// `opts.keep_duplicate_lamps` ([`crate::lamps`]).
 pub(crate) fn load_str(
     text_in: &str,
     source: &Path,
@@ -70,11 +82,17 @@ pub(crate) fn load_str(
         return Err(ctx.err(root, ErrorKind::NotCollada, "root element is not <COLLADA>"));
     }
     let up = up_axis(&ctx, root)?;
-    let scene = nodes::read_scene(&ctx, root, up)?;
+    let mut scene = nodes::read_scene(&ctx, root, up)?;
+    let mut report = ctx.into_report();
+    if !opts.keep_duplicate_lamps {
+        report
+            .notes
+            .extend(crate::lamps::merge_duplicate_lamps(&mut scene));
+    }
     Ok(Loaded {
-        hints: crate::RenderHints::default(),
         scene,
-        report: ctx.into_report(),
+        report,
+        hints: crate::RenderHints::default(),
     })
 }
 

@@ -1,14 +1,15 @@
 //! The visual scene: walking nested nodes, accumulating transforms, and
-//! dispatching each instance to the reader of its kind.
+//! dispatching each instance to the reader of its kind. The readers share
+//! the scene under construction through [`super::builder`], not through
+//! this module, so the dependency runs one way.
 
+use super::builder::Builder;
 use super::transform::{local_transform, up_axis_matrix, UpAxis};
 use super::xml::{child, children, elements, Ctx, XNode};
-use super::{cameras, geometry, lights, materials};
-use crate::desc::{MaterialDesc, SceneDesc};
+use super::{cameras, geometry, lights};
+use crate::desc::SceneDesc;
 use crate::error::{ErrorKind, LoadError};
 use glam::Mat4;
-use roxmltree::NodeId;
-use std::collections::HashMap;
 
 /// Deepest node nesting accepted (also bounds `instance_node` cycles).
 pub(crate) const MAX_NODE_DEPTH: usize = 256;
@@ -28,36 +29,6 @@ const KNOWN_TOP_LEVEL: &[&str] = &[
     "extra",
 ];
 
-/// The scene under construction, plus caches so shared materials are read once.
-pub(crate) struct Builder {
-    /// What has been read so far.
-    pub scene: SceneDesc,
-    materials: HashMap<NodeId, usize>,
-    default_material: Option<usize>,
-}
-
-impl Builder {
-    /// Index of the default grey material, added on first use.
-    pub fn default_material(&mut self) -> usize {
-        *self.default_material.get_or_insert_with(|| {
-            self.scene.materials.push(MaterialDesc::default_grey());
-            self.scene.materials.len() - 1
-        })
-    }
-
-    /// Index of the `<material>` element's description, read on first use.
-    pub fn material(&mut self, ctx: &Ctx, material: XNode) -> Result<usize, LoadError> {
-        if let Some(&i) = self.materials.get(&material.id()) {
-            return Ok(i);
-        }
-        let desc = materials::read_material(ctx, material)?;
-        self.scene.materials.push(desc);
-        let i = self.scene.materials.len() - 1;
-        self.materials.insert(material.id(), i);
-        Ok(i)
-    }
-}
-
 /// Reads the instanced visual scene into a [`SceneDesc`].
 pub(crate) fn read_scene(ctx: &Ctx, root: XNode, up: UpAxis) -> Result<SceneDesc, LoadError> {
     for el in elements(root) {
@@ -67,14 +38,7 @@ pub(crate) fn read_scene(ctx: &Ctx, root: XNode, up: UpAxis) -> Result<SceneDesc
         }
     }
     let visual = visual_scene(ctx, root)?;
-    let mut b = Builder {
-        scene: SceneDesc {
-            source: ctx.file.to_path_buf(),
-            ..SceneDesc::default()
-        },
-        materials: HashMap::new(),
-        default_material: None,
-    };
+    let mut b = Builder::new(ctx);
     let world = up_axis_matrix(up);
     for node in children(visual, "node") {
         walk(ctx, &mut b, node, world, 1)?;

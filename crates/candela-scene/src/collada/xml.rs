@@ -134,14 +134,14 @@ impl<'a, 'i> Ctx<'a, 'i> {
         let target = self.by_id(id).ok_or_else(|| {
             self.err(
                 node,
-                ErrorKind::DanglingUrl,
+                ErrorKind::MissingReference,
                 format!("{attr}=\"{url}\" names no element"),
             )
         })?;
         if !expected.contains(&target.tag_name().name()) {
             return Err(self.err(
                 node,
-                ErrorKind::DanglingUrl,
+                ErrorKind::MissingReference,
                 format!(
                     "{attr}=\"{url}\" names a <{}>, expected <{}>",
                     target.tag_name().name(),
@@ -153,21 +153,7 @@ impl<'a, 'i> Ctx<'a, 'i> {
     }
 }
 
-/// Line and column (1-based, column in characters) of a byte offset.
-pub(crate) fn loc_in(text: &str, byte: usize) -> SourceLoc {
-    let mut byte = byte.min(text.len());
-    while !text.is_char_boundary(byte) {
-        byte -= 1;
-    }
-    let before = &text[..byte];
-    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-    let line = before.bytes().filter(|&b| b == b'\n').count() + 1;
-    let col = before[line_start..].chars().count() + 1;
-    SourceLoc {
-        line: u32::try_from(line).unwrap_or(u32::MAX),
-        col: u32::try_from(col).unwrap_or(u32::MAX),
-    }
-}
+pub(crate) use crate::text_file::loc_in;
 
 /// How an element is named in messages: `<tag id="...">` (or `name`/`sid`).
 pub(crate) fn describe(node: XNode) -> String {

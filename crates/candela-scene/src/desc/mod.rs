@@ -8,6 +8,19 @@
 //! - Colours are linear RGB triples (`Vec3`).
 //! - Every item keeps the [`SourceLoc`] it came from, so later stages can report
 //!   problems against the file.
+//! - A mesh is stored once, in its own (object) space, and drawn by the
+//!   [`InstanceDesc`]s that name it, each with a world-from-object transform.
+//!   A mesh no instance names is not drawn. Loaders whose format has no
+//!   sharing (COLLADA as read here bakes each `<instance_geometry>`) store
+//!   world-space meshes with one identity instance each ([`SceneDesc::add_mesh`]).
+//! - Materials carry a texture slot per parameter ([`material`]); cameras carry
+//!   their own projection ([`camera`]).
+
+mod camera;
+mod material;
+
+pub use camera::{CameraDesc, Projection};
+pub use material::{BsdfDesc, ColorSpace, MaterialDesc, TextureRef, TextureSlot, TextureSlots};
 
 use glam::{Mat4, Vec2, Vec3};
 use std::path::PathBuf;
@@ -34,34 +47,16 @@ pub struct SceneDesc {
     pub source: PathBuf,
     /// Cameras in document order. The first one is the scene's camera.
     pub cameras: Vec<CameraDesc>,
-    /// Triangle meshes, already in world space.
+    /// Triangle meshes, each stored once in its own space.
     pub meshes: Vec<MeshDesc>,
+    /// Placements of meshes in the world; a mesh is drawn once per instance.
+    pub instances: Vec<InstanceDesc>,
     /// Analytic spheres, already in world space.
     pub spheres: Vec<SphereDesc>,
-    /// Materials; meshes and spheres refer to them by index.
+    /// Materials; meshes, instances and spheres refer to them by index.
     pub materials: Vec<MaterialDesc>,
     /// Light sources that are not emissive geometry.
     pub lights: Vec<LightDesc>,
-}
-
-/// A perspective camera as the file describes it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct CameraDesc {
-    /// Name of the node or camera element.
-    pub name: String,
-    /// Full world-from-camera transform (including the up-axis change). The
-    /// camera sits at the local origin, looks down local -Z, local +Y is up.
-    pub world_from_camera: Mat4,
-    /// Horizontal field of view in degrees.
-    pub xfov_deg: f32,
-    /// Vertical field of view in degrees.
-    pub yfov_deg: f32,
-    /// Near clip distance, if given.
-    pub znear: Option<f32>,
-    /// Far clip distance, if given.
-    pub zfar: Option<f32>,
-    /// Where the camera was described.
-    pub loc: SourceLoc,
 }
 
 /// A triangle mesh. Attributes have their own index arrays (as COLLADA does),
@@ -70,11 +65,11 @@ pub struct CameraDesc {
 pub struct MeshDesc {
     /// Name of the geometry (or node) it came from.
     pub name: String,
-    /// World-space vertex positions.
+    /// Vertex positions in the mesh's own space.
     pub positions: Vec<Vec3>,
     /// One entry per triangle: indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
-    /// World-space shading normals (unit length), if the file had any.
+    /// Shading normals (unit length) in the mesh's own space, if the file had any.
     pub normals: Vec<Vec3>,
     /// Per-triangle corner indices into `normals`; empty when there are none.
     pub normal_indices: Vec<[u32; 3]>,
@@ -82,10 +77,36 @@ pub struct MeshDesc {
     pub uvs: Vec<Vec2>,
     /// Per-triangle corner indices into `uvs`; empty when there are none.
     pub uv_indices: Vec<[u32; 3]>,
-    /// Index into [`SceneDesc::materials`].
+    /// Index into [`SceneDesc::materials`] (an instance may override it).
     pub material: usize,
-    /// Where the mesh was instanced.
+    /// Where the mesh was described.
     pub loc: SourceLoc,
+}
+
+/// One placement of a mesh: the mesh is stored once and drawn once per
+/// instance that names it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InstanceDesc {
+    /// Index into [`SceneDesc::meshes`].
+    pub mesh: usize,
+    /// World-from-object transform (must be invertible).
+    pub world_from_object: Mat4,
+    /// Index into [`SceneDesc::materials`] replacing the mesh's own, if any.
+    pub material: Option<usize>,
+    /// Where the instance was described.
+    pub loc: SourceLoc,
+}
+
+impl InstanceDesc {
+    /// The mesh `mesh` placed where it is stored (identity transform).
+    pub fn identity(mesh: usize, loc: SourceLoc) -> Self {
+        Self {
+            mesh,
+            world_from_object: Mat4::IDENTITY,
+            material: None,
+            loc,
+        }
+    }
 }
 
 /// An analytic sphere.
@@ -101,89 +122,6 @@ pub struct SphereDesc {
     pub material: usize,
     /// Where the sphere was instanced.
     pub loc: SourceLoc,
-}
-
-/// A material: one BSDF, optionally emissive, optionally textured.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MaterialDesc {
-    /// Material id/name from the file.
-    pub name: String,
-    /// The scattering model.
-    pub bsdf: BsdfDesc,
-    /// Emitted radiance (one-sided, on the side of the geometric normal), if any.
-    pub emission: Option<Vec3>,
-    /// Image texture for the diffuse colour, if any.
-    pub diffuse_texture: Option<TextureDesc>,
-    /// Where the material was described.
-    pub loc: SourceLoc,
-}
-
-impl MaterialDesc {
-    /// The loader's default when a file names no material: diffuse 0.5 grey.
-    pub fn default_grey() -> Self {
-        Self {
-            name: "default".into(),
-            bsdf: BsdfDesc::Diffuse {
-                albedo: Vec3::splat(0.5),
-            },
-            emission: None,
-            diffuse_texture: None,
-            loc: SourceLoc::default(),
-        }
-    }
-}
-
-/// An image texture reference.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TextureDesc {
-    /// Path of the image, resolved relative to the scene file.
-    pub path: PathBuf,
-}
-
-/// Scattering models, as parameters. The renderer turns these into BSDFs.
-#[derive(Clone, Debug, PartialEq)]
-pub enum BsdfDesc {
-    /// Lambertian reflection.
-    Diffuse {
-        /// Reflectance in [0, 1] per channel.
-        albedo: Vec3,
-    },
-    /// Perfect specular reflection.
-    Mirror {
-        /// Reflectance per channel.
-        reflectance: Vec3,
-    },
-    /// Dielectric interface with reflection and refraction.
-    Glass {
-        /// Reflectance scale per channel.
-        reflectance: Vec3,
-        /// Transmittance scale per channel.
-        transmittance: Vec3,
-        /// Roughness (0 = smooth).
-        roughness: f32,
-        /// Index of refraction of the inside.
-        ior: f32,
-    },
-    /// Dielectric interface that only refracts.
-    Refraction {
-        /// Transmittance scale per channel.
-        transmittance: Vec3,
-        /// Roughness (0 = smooth).
-        roughness: f32,
-        /// Index of refraction of the inside.
-        ior: f32,
-    },
-    /// Rough conductor with a Beckmann microfacet distribution.
-    Microfacet {
-        /// Beckmann roughness alpha.
-        alpha: f32,
-        /// Real part of the complex index of refraction, per channel.
-        eta: Vec3,
-        /// Imaginary part (absorption), per channel.
-        k: Vec3,
-    },
-    /// Black: absorbs everything (the BSDF of a pure emitter).
-    Black,
 }
 
 /// A light source that is not emissive geometry.
@@ -248,13 +186,28 @@ pub enum LightKind {
 }
 
 impl SceneDesc {
-    /// Axis-aligned bounds of all geometry (mesh vertices and spheres), or
-    /// `None` for a scene without geometry.
+    /// Adds a mesh stored in world space and one identity instance of it;
+    /// returns the mesh's index.
+    pub fn add_mesh(&mut self, mesh: MeshDesc) -> usize {
+        let loc = mesh.loc;
+        self.meshes.push(mesh);
+        let i = self.meshes.len() - 1;
+        self.instances.push(InstanceDesc::identity(i, loc));
+        i
+    }
+
+    /// Axis-aligned world bounds of all drawn geometry (every instance's
+    /// transformed vertices, and the spheres), or `None` for a scene without
+    /// geometry. Instances naming no mesh are skipped.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for m in &self.meshes {
+        for inst in &self.instances {
+            let Some(m) = self.meshes.get(inst.mesh) else {
+                continue;
+            };
             for &p in &m.positions {
+                let p = inst.world_from_object.transform_point3(p);
                 lo = lo.min(p);
                 hi = hi.max(p);
             }
@@ -266,8 +219,18 @@ impl SceneDesc {
         (lo.x <= hi.x).then_some((lo, hi))
     }
 
-    /// Total number of triangles over all meshes.
+    /// Total number of triangles stored over all meshes (each counted once,
+    /// however many instances draw it).
     pub fn triangle_count(&self) -> usize {
         self.meshes.iter().map(|m| m.triangles.len()).sum()
+    }
+
+    /// Number of triangles drawn: each instance counts its mesh's triangles.
+    pub fn instanced_triangle_count(&self) -> usize {
+        self.instances
+            .iter()
+            .filter_map(|i| self.meshes.get(i.mesh))
+            .map(|m| m.triangles.len())
+            .sum()
     }
 }

@@ -1,0 +1,248 @@
+//! Materials as parameters: a scattering model with constant parameters,
+//! plus one texture slot per parameter a material can vary over a surface.
+//!
+//! A texture in a slot replaces the constant of that parameter (times its
+//! `scale`); an empty slot leaves the constant. The constants live in the
+//! [`BsdfDesc`] (colour, roughness) and in [`MaterialDesc::emission`]; the
+//! parameters no model has a constant for yet take the neutral value noted
+//! on their [`TextureSlot`] (metalness 0, opacity 1, the geometry's own
+//! shading normal).
+
+use super::SourceLoc;
+use glam::Vec3;
+use std::path::PathBuf;
+
+/// A material: one BSDF, optionally emissive, optionally textured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialDesc {
+    /// Material id/name from the file.
+    pub name: String,
+    /// The scattering model and its constant parameters.
+    pub bsdf: BsdfDesc,
+    /// Emitted radiance (one-sided, on the side of the geometric normal), if any.
+    pub emission: Option<Vec3>,
+    /// Textures that replace constant parameters, one slot per parameter.
+    pub textures: TextureSlots,
+    /// Where the material was described.
+    pub loc: SourceLoc,
+}
+
+impl MaterialDesc {
+    /// The loader's default when a file names no material: diffuse 0.5 grey.
+    pub fn default_grey() -> Self {
+        Self {
+            name: "default".into(),
+            bsdf: BsdfDesc::Diffuse {
+                albedo: Vec3::splat(0.5),
+            },
+            emission: None,
+            textures: TextureSlots::default(),
+            loc: SourceLoc::default(),
+        }
+    }
+}
+
+/// How a texture's stored values map to linear values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ColorSpace {
+    /// The sRGB transfer curve (8-bit colour images): decoded to linear.
+    #[default]
+    Srgb,
+    /// Stored values are linear already (data maps: roughness, normals, and
+    /// every floating-point image).
+    Linear,
+}
+
+impl ColorSpace {
+    /// The convention of an image file's format, for files that name no
+    /// colour space: floating-point formats (`.exr`, `.hdr`, `.pfm`) hold
+    /// linear values, 8-bit ones (PNG, JPEG, ...) sRGB.
+    pub fn of_image_file(path: &std::path::Path) -> ColorSpace {
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        if ["exr", "hdr", "pfm"]
+            .iter()
+            .any(|f| ext.eq_ignore_ascii_case(f))
+        {
+            ColorSpace::Linear
+        } else {
+            ColorSpace::Srgb
+        }
+    }
+}
+
+/// An image texture reference: which file, how to read its values, and a
+/// factor applied to them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureRef {
+    /// Path of the image, resolved relative to the scene file.
+    pub path: PathBuf,
+    /// How the stored values become linear ones.
+    pub color_space: ColorSpace,
+    /// Multiplies every (linear) value read from the image.
+    pub scale: f32,
+}
+
+impl TextureRef {
+    /// The texture at `path`, read in `color_space`, unscaled.
+    pub fn new(path: impl Into<PathBuf>, color_space: ColorSpace) -> Self {
+        Self {
+            path: path.into(),
+            color_space,
+            scale: 1.0,
+        }
+    }
+}
+
+/// The parameters a texture can drive.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TextureSlot {
+    /// Base colour: the BSDF's albedo, reflectance or transmittance.
+    Color,
+    /// Roughness (a dielectric's `roughness`, a conductor's `alpha`).
+    Roughness,
+    /// Metalness in [0, 1]; 0 when no texture says otherwise.
+    Metalness,
+    /// Tangent-space normal map; the geometry's shading normal otherwise.
+    Normal,
+    /// Emitted radiance, replacing [`MaterialDesc::emission`].
+    Emission,
+    /// Opacity in [0, 1] (cut-outs); 1 when no texture says otherwise.
+    Opacity,
+}
+
+impl TextureSlot {
+    /// Every slot, in declaration order.
+    pub const ALL: [TextureSlot; 6] = [
+        TextureSlot::Color,
+        TextureSlot::Roughness,
+        TextureSlot::Metalness,
+        TextureSlot::Normal,
+        TextureSlot::Emission,
+        TextureSlot::Opacity,
+    ];
+
+    /// The slot's name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            TextureSlot::Color => "colour",
+            TextureSlot::Roughness => "roughness",
+            TextureSlot::Metalness => "metalness",
+            TextureSlot::Normal => "normal map",
+            TextureSlot::Emission => "emission",
+            TextureSlot::Opacity => "opacity",
+        }
+    }
+
+    /// The colour space a loader should assume when its file does not say:
+    /// sRGB for colours, linear for data.
+    pub fn default_color_space(self) -> ColorSpace {
+        match self {
+            TextureSlot::Color | TextureSlot::Emission => ColorSpace::Srgb,
+            _ => ColorSpace::Linear,
+        }
+    }
+}
+
+/// One optional texture per [`TextureSlot`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TextureSlots {
+    /// Base colour.
+    pub color: Option<TextureRef>,
+    /// Roughness.
+    pub roughness: Option<TextureRef>,
+    /// Metalness.
+    pub metalness: Option<TextureRef>,
+    /// Tangent-space normal map.
+    pub normal: Option<TextureRef>,
+    /// Emitted radiance.
+    pub emission: Option<TextureRef>,
+    /// Opacity.
+    pub opacity: Option<TextureRef>,
+}
+
+impl TextureSlots {
+    /// The texture in `slot`, if any.
+    pub fn get(&self, slot: TextureSlot) -> Option<&TextureRef> {
+        self.slot(slot).as_ref()
+    }
+
+    /// Puts `texture` in `slot` (replacing what was there).
+    pub fn set(&mut self, slot: TextureSlot, texture: TextureRef) {
+        *self.slot_mut(slot) = Some(texture);
+    }
+
+    /// The filled slots, in [`TextureSlot::ALL`] order.
+    pub fn iter(&self) -> impl Iterator<Item = (TextureSlot, &TextureRef)> {
+        TextureSlot::ALL
+            .into_iter()
+            .filter_map(|s| self.get(s).map(|t| (s, t)))
+    }
+
+    fn slot(&self, slot: TextureSlot) -> &Option<TextureRef> {
+        match slot {
+            TextureSlot::Color => &self.color,
+            TextureSlot::Roughness => &self.roughness,
+            TextureSlot::Metalness => &self.metalness,
+            TextureSlot::Normal => &self.normal,
+            TextureSlot::Emission => &self.emission,
+            TextureSlot::Opacity => &self.opacity,
+        }
+    }
+
+    fn slot_mut(&mut self, slot: TextureSlot) -> &mut Option<TextureRef> {
+        match slot {
+            TextureSlot::Color => &mut self.color,
+            TextureSlot::Roughness => &mut self.roughness,
+            TextureSlot::Metalness => &mut self.metalness,
+            TextureSlot::Normal => &mut self.normal,
+            TextureSlot::Emission => &mut self.emission,
+            TextureSlot::Opacity => &mut self.opacity,
+        }
+    }
+}
+
+/// Scattering models, as parameters. The renderer turns these into BSDFs.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BsdfDesc {
+    /// Lambertian reflection.
+    Diffuse {
+        /// Reflectance in [0, 1] per channel.
+        albedo: Vec3,
+    },
+    /// Perfect specular reflection.
+    Mirror {
+        /// Reflectance per channel.
+        reflectance: Vec3,
+    },
+    /// Dielectric interface with reflection and refraction.
+    Glass {
+        /// Reflectance scale per channel.
+        reflectance: Vec3,
+        /// Transmittance scale per channel.
+        transmittance: Vec3,
+        /// Roughness (0 = smooth).
+        roughness: f32,
+        /// Index of refraction of the inside.
+        ior: f32,
+    },
+    /// Dielectric interface that only refracts.
+    Refraction {
+        /// Transmittance scale per channel.
+        transmittance: Vec3,
+        /// Roughness (0 = smooth).
+        roughness: f32,
+        /// Index of refraction of the inside.
+        ior: f32,
+    },
+    /// Rough conductor with a Beckmann microfacet distribution.
+    Microfacet {
+        /// Beckmann roughness alpha.
+        alpha: f32,
+        /// Real part of the complex index of refraction, per channel.
+        eta: Vec3,
+        /// Imaginary part (absorption), per channel.
+        k: Vec3,
+    },
+    /// Black: absorbs everything (the BSDF of a pure emitter).
+    Black,
+}
