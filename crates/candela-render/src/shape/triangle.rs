@@ -126,13 +126,15 @@ pub fn intersect_triangle(ray: &TriangleRay, v: &[Vec3; 3], t_max: f32) -> Optio
     }
     let inv_det = 1.0 / det;
     let mut t = t_scaled * inv_det;
-    // Written so that a NaN (from a determinant that underflows) rejects.
-    if !(t < t_max) {
+    // A NaN (from a determinant that underflows) rejects here.
+    if t.is_nan() || t >= t_max {
         return None;
     }
     let bound = t_error_bound(&p, z, [e0, e1, e2], inv_det);
-    if !(t > bound) {
-        if !(t.abs() <= bound && inv_det.is_finite()) {
+    let trusted = t > bound; // false for a NaN bound too
+    if !trusted {
+        let near_zero = t.abs() <= bound && inv_det.is_finite();
+        if !near_zero {
             return None;
         }
         t = near_hit_t(ray, v, t_max)?;
