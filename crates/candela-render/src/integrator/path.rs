@@ -3,6 +3,13 @@
 //! `PathIntegrator::Li`), next-event estimation at every non-specular vertex
 //! and Russian roulette on throughput.
 //!
+//! Roulette looks at `beta · η²-scale` rather than `beta` (pbrt-v4's
+//! `etaScale`): refraction into glass scales radiance by `1/η²`, which
+//! leaving undoes, so the bare throughput of a path inside glass understates
+//! what it will carry out and roulette would end it needlessly often. The
+//! survival probability may be anything in (0, 1]: dividing the survivors
+//! by it keeps the estimate unbiased either way.
+//!
 //! Bounce counting follows CS184: light that reaches the camera after `k`
 //! scattering events has "k bounces" — `k = 0` is an emitter seen directly,
 //! `k = 1` direct lighting. [`PathSettings::bounces`] selects which `k` are
@@ -65,6 +72,8 @@ pub fn path_radiance(
     let max_depth = *settings.bounces.end();
     let mut l = Vec3::ZERO;
     let mut beta = Vec3::ONE;
+    // Product of η² over the refractions so far (see the module docs).
+    let mut eta_scale = 1.0f32;
     let mut ray = *camera_ray;
     let mut prev: Option<PrevVertex> = None;
     let mut depth = 0u32;
@@ -115,6 +124,9 @@ pub fn path_radiance(
             break;
         }
         beta *= s.f * s.wi.z.abs() / s.pdf;
+        if transmits {
+            eta_scale *= refraction_eta2(&bsdf, frame.to_local(hit.wo));
+        }
         prev = Some(PrevVertex {
             p: hit.p,
             bsdf_pdf: s.pdf,
@@ -125,7 +137,7 @@ pub fn path_radiance(
         depth += 1;
         if let Some(from) = settings.roulette_from {
             if depth >= from {
-                let survive = beta.max_element().min(1.0);
+                let survive = (beta * eta_scale).max_element().min(1.0);
                 if survive <= 0.0 || sampler.next_1d() >= survive {
                     break;
                 }
@@ -149,6 +161,19 @@ fn sample_direction(
     let u1 = sampler.next_1d();
     let u2 = sampler.next_2d();
     bsdf.sample(wo, u1, u2).filter(|s| s.pdf > 0.0)
+}
+
+/// The squared relative index of refraction (far side over near side) of a
+/// refraction leaving direction `wo` (local frame): the factor `1/η²` that
+/// the dielectric put into the sample's weight. 1 for every other BSDF.
+fn refraction_eta2(bsdf: &Bsdf, wo: Vec3) -> f32 {
+    match *bsdf {
+        Bsdf::Glass { ior, .. } | Bsdf::Refraction { ior, .. } => {
+            let eta = if wo.z > 0.0 { ior } else { 1.0 / ior };
+            eta * eta
+        }
+        Bsdf::Diffuse { .. } | Bsdf::Mirror { .. } | Bsdf::Microfacet { .. } => 1.0,
+    }
 }
 
 /// MIS weight of emission found by the path itself (not by light sampling).

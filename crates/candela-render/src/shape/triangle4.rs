@@ -4,10 +4,12 @@
 //! Every lane performs exactly the scalar test's operations in the same
 //! order, so results (and watertightness) are bit-identical to
 //! [`super::intersect_triangle`]; the `t` error bound, needed only for lanes
-//! that pass every other test, is computed for all lanes once any does.
+//! that pass every other test, is computed for all lanes once any does, and
+//! lanes whose `t` lies within it of zero are decided by the same f64 test
+//! ([`near_hit_t`]), one lane at a time (rare: origins within microns).
 
 use super::surface::gamma;
-use super::triangle::{TriangleHit, TriangleRay};
+use super::triangle::{near_hit_t, TriangleHit, TriangleRay};
 use candela_bvh::simd::F32x4;
 use glam::Vec3;
 
@@ -45,6 +47,7 @@ impl TrianglePacket {
 /// The per-ray set-up of [`TriangleRay`] broadcast to four lanes.
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleRay4 {
+    scalar: TriangleRay,
     axes: [usize; 3],
     origin: [F32x4; 3],
     shear: [F32x4; 3],
@@ -61,6 +64,7 @@ impl TriangleRay4 {
         let o = r.origin;
         let s = r.shear;
         Self {
+            scalar: *r,
             axes,
             origin: [F32x4::splat(o.x), F32x4::splat(o.y), F32x4::splat(o.z)],
             shear: [F32x4::splat(s.x), F32x4::splat(s.y), F32x4::splat(s.z)],
@@ -108,7 +112,7 @@ fn hit_lanes(ray: &TriangleRay4, p: &TrianglePacket, lanes: u32, t_max: f32) -> 
     let t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
     let inv_det = F32x4::splat(1.0) / det;
     let t = t_scaled * inv_det;
-    valid &= t.lt_mask(F32x4::splat(t_max)) & zero.lt_mask(t);
+    valid &= t.lt_mask(F32x4::splat(t_max));
     if valid == 0 {
         return None;
     }
@@ -126,7 +130,14 @@ fn hit_lanes(ray: &TriangleRay4, p: &TrianglePacket, lanes: u32, t_max: f32) -> 
     let bound = F32x4::splat(3.0)
         * (g3 * max_e * max_z + delta_e * max_z + delta_z * max_e)
         * inv_det.abs();
-    valid &= bound.lt_mask(t);
+    let sure = valid & bound.lt_mask(t);
+    let near =
+        valid & !sure & t.abs().le_mask(bound) & inv_det.abs().lt_mask(F32x4::splat(f32::INFINITY));
+    let (valid, t) = if near == 0 {
+        (sure, t)
+    } else {
+        decide_near_lanes(ray, p, sure, near, t, t_max)
+    };
     (valid != 0).then_some(LaneHits {
         valid,
         t,
@@ -134,6 +145,31 @@ fn hit_lanes(ray: &TriangleRay4, p: &TrianglePacket, lanes: u32, t_max: f32) -> 
         e2,
         inv_det,
     })
+}
+
+/// Lanes in `near` re-decided in f64 by [`near_hit_t`], as the scalar test
+/// does: the hit lanes (`sure` and the near lanes that hit) and their `t`.
+#[cold]
+#[inline(never)]
+fn decide_near_lanes(
+    ray: &TriangleRay4,
+    p: &TrianglePacket,
+    sure: u32,
+    mut near: u32,
+    t: F32x4,
+    t_max: f32,
+) -> (u32, F32x4) {
+    let mut valid = sure;
+    let mut ts = t.to_array();
+    while near != 0 {
+        let lane = near.trailing_zeros() as usize;
+        near &= near - 1;
+        if let Some(t) = near_hit_t(&ray.scalar, &p.triangle(lane), t_max) {
+            ts[lane] = t;
+            valid |= 1 << lane;
+        }
+    }
+    (valid, F32x4::load(&ts))
 }
 
 /// Closest hit among the lanes in `lanes` (a bit mask) with `t` in

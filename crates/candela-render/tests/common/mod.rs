@@ -77,6 +77,32 @@ pub fn furnace(albedo: f32, le: f32) -> SceneDesc {
     }
 }
 
+/// The white furnace with a lossless glass ball (reflectance and
+/// transmittance 1, IOR 1.5) filling the camera's view: a path through it
+/// carries weight 1 (each `1/η²` on entering is undone on leaving), so the
+/// radiance stays `le / (1 - albedo)`.
+pub fn furnace_with_glass_ball(albedo: f32, le: f32) -> SceneDesc {
+    let mut desc = furnace(albedo, le);
+    desc.materials.push(material(
+        "glass",
+        BsdfDesc::Glass {
+            reflectance: Vec3::ONE,
+            transmittance: Vec3::ONE,
+            roughness: 0.0,
+            ior: 1.5,
+        },
+        None,
+    ));
+    desc.spheres.push(SphereDesc {
+        name: "ball".into(),
+        center: Vec3::new(0.0, 0.0, -0.55),
+        radius: 0.35,
+        material: desc.materials.len() - 1,
+        loc: SourceLoc::default(),
+    });
+    desc
+}
+
 /// pbrt's analytic scene: inside a unit sphere of albedo 0.5 with a point
 /// light of intensity π at its centre, the radiance is exactly 1 everywhere.
 pub fn analytic_sphere() -> SceneDesc {
