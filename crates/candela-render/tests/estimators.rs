@@ -127,7 +127,7 @@ fn russian_roulette_through_glass_keeps_the_furnace_mean() {
     let (albedo, le) = (0.6f64, 0.5f64);
     let scene = furnace_with_glass_ball(albedo as f32, le as f32);
     for mode in MODES {
-        let e = estimate(&scene, path(0..=100_000, mode), 16, 64, 31);
+        let e = estimate(&scene, path(100_000, true, mode), 16, 64, 31);
         assert_converges(&format!("{mode:?}, glass ball"), &e, le / (1.0 - albedo), Z);
     }
 }

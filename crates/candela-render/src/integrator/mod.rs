@@ -17,8 +17,8 @@ use crate::geometry::Ray;
 use crate::material::Material;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
-use crate::shape::SurfaceHit;
 pub use crate::settings::{Estimator, IntegratorSettings};
+use crate::shape::SurfaceHit;
 use crate::stats::RayCounts;
 use glam::Vec3;
 
