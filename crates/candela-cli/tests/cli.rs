@@ -160,6 +160,12 @@ fn impossible_flags_are_usage_errors() {
         &["-p", "40", "0", "20", "10"],
         &["-p", "0", "0", "0", "10"],
         &["--time", "0"],
+        // A film that would not fit in memory, a non-finite number, a
+        // focus at zero distance: refused before anything is loaded.
+        &["-r", "100000", "100000", "-s", "1"],
+        &["--exposure", "nan"],
+        &["-d", "0", "-b", "0.1"],
+        &["--integrator", "bdpt"],
     ] {
         let run = candela(&[args, &["-q", "-f", "/nonexistent/never.png"]].concat());
         assert_eq!(

@@ -11,22 +11,9 @@ use candela_scene::{load, BsdfDesc, LightKind, LoadOptions, SceneDesc};
 use glam::Vec3;
 use std::path::PathBuf;
 
+/// The shared CS184 corpus; a test that needs it fails without it.
 fn cs184_dir() -> Option<PathBuf> {
-    // The repository root's sibling `shared/`; one level further up when the
-    // checkout is a worktree under `wt/`.
-    let crate_dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let candidates = [
-        "../../../shared/scenes/cs184",
-        "../../../../shared/scenes/cs184",
-    ];
-    let found = candidates
-        .iter()
-        .map(|c| crate_dir.join(c))
-        .find(|d| d.is_dir());
-    if found.is_none() {
-        eprintln!("note: shared/scenes/cs184 not found next to the repository; CS184 golden tests skipped");
-    }
-    found
+    Some(candela_testkit::shared_dir().join("scenes/cs184"))
 }
 
 fn load_strict(name: &str) -> Option<SceneDesc> {

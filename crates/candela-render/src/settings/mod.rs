@@ -188,13 +188,19 @@ impl Settings {
 
     /// The settings of a render: the defaults, under what the scene suggests
     /// (`hints`), under what the user gave explicitly (`explicit`, as JSON).
+    ///
+    /// A time budget given without a sample count means "no limit but
+    /// time", so a scene's suggested sample count does not cap it.
     pub fn resolve(
         hints: &RenderHints,
         explicit: &Map<String, Value>,
     ) -> Result<Settings, SettingsError> {
-        Settings::default()
-            .overlay(&hints_json(hints))?
-            .overlay(explicit)
+        let mut suggested = hints_json(hints);
+        let timed = explicit.get("time").is_some_and(|t| !t.is_null());
+        if timed && !explicit.contains_key("spp") {
+            suggested.remove("spp");
+        }
+        Settings::default().overlay(&suggested)?.overlay(explicit)
     }
 
     /// Settings from a JSON object of changes to the defaults.

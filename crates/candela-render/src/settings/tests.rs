@@ -196,3 +196,22 @@ fn explicit_settings_beat_scene_hints_which_beat_defaults() {
         Settings::default()
     );
 }
+
+#[test]
+fn a_time_budget_is_not_capped_by_a_suggested_sample_count() {
+    let hints = RenderHints {
+        spp: Some(64),
+        ..RenderHints::default()
+    };
+    let timed = Settings::resolve(&hints, &changes(json!({"time": 1.0}))).unwrap();
+    assert_eq!(timed.sampling.spp(), u32::MAX);
+    let both = Settings::resolve(&hints, &changes(json!({"time": 1.0, "spp": 8}))).unwrap();
+    assert_eq!(both.sampling.spp(), 8);
+    assert_eq!(
+        Settings::resolve(&hints, &Map::new())
+            .unwrap()
+            .sampling
+            .spp(),
+        64
+    );
+}

@@ -205,17 +205,6 @@ pub fn assert_converges(label: &str, e: &Estimate, expected: f64, z: f64) {
 
 /// A CS184 scene file from the shared corpus beside the repository, or
 /// `None` (with a note) when the corpus is absent.
-pub fn cs184(name: &str) -> Option<std::path::PathBuf> {
-    let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    [
-        "../../../shared/scenes/cs184",
-        "../../../../shared/scenes/cs184",
-    ]
-    .iter()
-    .map(|d| root.join(d).join(name))
-    .find(|p| p.is_file())
-    .or_else(|| {
-        eprintln!("note: {name} not found next to the repository; test skipped");
-        None
-    })
+pub fn cs184(name: &str) -> std::path::PathBuf {
+    candela_testkit::cs184_scene(name)
 }
