@@ -131,3 +131,19 @@ fn russian_roulette_through_glass_keeps_the_furnace_mean() {
         assert_converges(&format!("{mode:?}, glass ball"), &e, le / (1.0 - albedo), Z);
     }
 }
+
+#[test]
+fn a_clamp_bounds_every_sample_and_above_the_radiance_changes_nothing() {
+    // The white furnace converges to le / (1 - albedo) = 1.
+    let scene = furnace(0.5, 0.5);
+    let clamped = |clamp: Option<f32>| IntegratorSettings {
+        clamp,
+        ..IntegratorSettings::path(100_000, LightingMode::Mis)
+    };
+    let low = estimate(&scene, clamped(Some(0.25)), 8, 16, 3);
+    assert!(low.mean <= 0.25 + 1e-6, "clamped mean {}", low.mean);
+    let free = estimate(&scene, clamped(None), 8, 16, 3);
+    let high = estimate(&scene, clamped(Some(1e6)), 8, 16, 3);
+    assert_eq!(free.mean.to_bits(), high.mean.to_bits());
+    assert!(free.mean > 0.9, "unclamped mean {}", free.mean);
+}

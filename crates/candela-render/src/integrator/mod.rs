@@ -63,10 +63,16 @@ pub fn sample(
     ctx: &mut ThreadContext,
 ) -> SampleValue {
     let mut aov = FirstHitAov::default();
-    let radiance = match settings.path_settings() {
+    let mut radiance = match settings.path_settings() {
         None => normals::normals(scene, ray, ctx, &mut aov),
         Some(path) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov),
     };
+    if let Some(clamp) = settings.clamp {
+        let brightest = radiance.max_element();
+        if brightest > clamp {
+            radiance *= clamp / brightest;
+        }
+    }
     SampleValue {
         radiance,
         albedo: aov.albedo,

@@ -65,6 +65,12 @@ pub struct IntegratorSettings {
         value_parser = clap::builder::BoolishValueParser::new(),
         default_value_t = IntegratorSettings::default().roulette))]
     pub roulette: bool,
+
+    /// Largest radiance a camera sample may carry: brighter samples are
+    /// scaled down to it, hue kept (pbrt's `maxcomponentvalue`). Removes
+    /// fireflies at the cost of bias; off by default.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "RADIANCE"))]
+    pub clamp: Option<f32>,
 }
 
 impl Default for IntegratorSettings {
@@ -76,6 +82,7 @@ impl Default for IntegratorSettings {
             light_samples: 1,
             accumulate: true,
             roulette: true,
+            clamp: None,
         }
     }
 }
@@ -112,6 +119,10 @@ impl IntegratorSettings {
     }
 
     pub(super) fn validate(&self) -> Result<(), SettingsError> {
+        if let Some(c) = self.clamp {
+            let ok = c.is_finite() && c > 0.0;
+            check(ok, "clamp", "--clamp", c, "a radiance > 0")?;
+        }
         check(
             self.light_samples >= 1,
             "light_samples",
