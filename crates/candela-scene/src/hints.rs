@@ -15,4 +15,6 @@ pub struct RenderHints {
     pub resolution: Option<(u32, u32)>,
     /// Render from the file's camera rather than the CS184 framing.
     pub file_camera: bool,
+    /// Largest radiance a camera sample may carry (a firefly clamp).
+    pub clamp: Option<f32>,
 }

@@ -103,10 +103,14 @@ pub fn demo_scene() -> Loaded {
     loaded.hints = RenderHints {
         spp: Some(DEMO_SPP),
         file_camera: true,
+        clamp: Some(DEMO_CLAMP),
         ..RenderHints::default()
     };
     loaded
 }
 
 /// Samples per pixel of the demo unless the user says otherwise.
-pub const DEMO_SPP: u32 = 64;
+pub const DEMO_SPP: u32 = 32;
+/// The demo's firefly clamp, a few times the walls' radiance: caustics off the mirror
+/// sphere are single bright samples at this sample count.
+pub const DEMO_CLAMP: f32 = 1.5;

@@ -112,6 +112,9 @@ fn hints_json(h: &RenderHints) -> Map<String, Value> {
     if h.file_camera {
         m.insert("camera".into(), "file".into());
     }
+    if let Some(c) = h.clamp {
+        m.insert("clamp".into(), c.into());
+    }
     m
 }
 

@@ -184,11 +184,13 @@ fn explicit_settings_beat_scene_hints_which_beat_defaults() {
         max_depth: Some(9),
         resolution: Some((320, 200)),
         file_camera: true,
+        clamp: Some(3.0),
     };
     let s = Settings::resolve(&hints, &changes(json!({"spp": 4, "camera": "cs184"}))).unwrap();
     assert_eq!(s.sampling.spp, Some(4));
     assert_eq!(s.image.camera, crate::camera::framing::CameraMode::Cs184);
     assert_eq!(s.integrator.max_depth, 9);
+    assert_eq!(s.integrator.clamp, Some(3.0));
     assert_eq!((s.image.width, s.image.height), (320, 200));
     assert_eq!(s.output, OutputSettings::default());
     assert_eq!(
