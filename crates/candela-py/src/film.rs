@@ -1,14 +1,14 @@
 //! `candela.Film`: per-pixel sums as NumPy arrays, files and bytes.
 
+use crate::settings::{kwargs_json, value_error};
 use crate::stats::StatsRecord;
 use crate::wire::{self, PlacedFilm};
-use crate::settings::{kwargs_json, value_error};
+use candela_render::film::OutputError;
 use candela_render::film::{write_film, Film, OutputOptions, PixelSums};
 use candela_render::settings::Settings;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};
-use candela_render::film::OutputError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 use std::path::PathBuf;
@@ -125,7 +125,14 @@ impl PyFilm {
     /// The image: mean linear radiance per pixel, float32, shape (H, W, 3).
     fn image<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
         let (w, h) = self.size();
-        let v = self.inner.film.resolve().into_pixels().into_iter().flatten().collect();
+        let v = self
+            .inner
+            .film
+            .resolve()
+            .into_pixels()
+            .into_iter()
+            .flatten()
+            .collect();
         reshape3(py, v, h, w)
     }
 

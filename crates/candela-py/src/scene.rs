@@ -38,8 +38,15 @@ type BuildKey = String;
 fn key(settings: &Settings) -> BuildKey {
     let s = settings.to_json();
     let keys = [
-        "width", "height", "camera", "aperture", "focal_distance", "env_map", "env_scale",
-        "env_rotate", "bvh",
+        "width",
+        "height",
+        "camera",
+        "aperture",
+        "focal_distance",
+        "env_map",
+        "env_scale",
+        "env_rotate",
+        "bvh",
     ];
     let picked: serde_json::Map<_, _> = keys
         .iter()
@@ -181,7 +188,11 @@ impl PyScene {
     /// The settings a `render` with these keywords would use, every one of
     /// them, as a dict (defaults < the scene's suggestions < keywords).
     #[pyo3(signature = (**kwargs))]
-    fn settings<'py>(&self, py: Python<'py>, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
+    fn settings<'py>(
+        &self,
+        py: Python<'py>,
+        kwargs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let req = request(&self.hints, kwargs_json(kwargs)?)?;
         let text = serde_json::Value::Object(req.settings.to_json()).to_string();
         py.import("json")?.call_method1("loads", (text,))

@@ -43,7 +43,10 @@ pub fn to_json(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
     if v.is_instance_of::<PyInt>() {
         return match v.extract::<i64>() {
             Ok(i) => Ok(i.into()),
-            Err(_) => v.extract::<u64>().map(Value::from).map_err(|_| bad("integer out of range")),
+            Err(_) => v
+                .extract::<u64>()
+                .map(Value::from)
+                .map_err(|_| bad("integer out of range")),
         };
     }
     if v.is_instance_of::<PyFloat>() {
@@ -69,7 +72,9 @@ pub fn to_json(key: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
     if let Ok(path) = v.extract::<std::path::PathBuf>() {
         return Ok(Value::String(path.to_string_lossy().into_owned()));
     }
-    Err(bad("expected None, a bool, a number, a string, a path, or a list of these"))
+    Err(bad(
+        "expected None, a bool, a number, a string, a path, or a list of these",
+    ))
 }
 
 /// Keyword arguments as a JSON object of settings.
@@ -141,7 +146,12 @@ pub fn settings_help() -> Vec<(String, String)> {
     let cmd = Settings::augment_args(clap::Command::new("candela"));
     let mut help: Vec<(String, String)> = cmd
         .get_arguments()
-        .map(|a| (a.get_id().to_string(), a.get_help().map(|h| h.to_string()).unwrap_or_default()))
+        .map(|a| {
+            (
+                a.get_id().to_string(),
+                a.get_help().map(|h| h.to_string()).unwrap_or_default(),
+            )
+        })
         .collect();
     // Settings only the CS184 spellings reach on the command line.
     help.push(("cell".into(), CELL_HELP.into()));

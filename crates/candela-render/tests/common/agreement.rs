@@ -42,7 +42,7 @@ fn batches(scene: &Scene, case: &Agreement, lighting: LightingMode, spp: u32) ->
                 seed: case.seed_base + 1000 * batch + lighting as u64,
                 integrator: IntegratorSettings {
                     max_depth: case.max_bounces,
-                    lighting: lighting,
+                    lighting,
                     roulette: case.roulette_from.is_some(),
                     ..Default::default()
                 },
