@@ -141,11 +141,12 @@ impl Cs184Flags {
     /// set.
     pub fn apply(&self, s: &mut Settings) -> Vec<&'static str> {
         let mut set = Vec::new();
-        if let Some(&[w, h]) = self.resolution.as_deref() {
+        // A flag given twice keeps its last values, as every other flag.
+        if let Some(&[.., w, h]) = self.resolution.as_deref() {
             (s.image.width, s.image.height) = (w, h);
             set.extend(["width", "height"]);
         }
-        if let Some(&[batch, tolerance]) = self.adaptive.as_deref() {
+        if let Some(&[.., batch, tolerance]) = self.adaptive.as_deref() {
             // A BATCH that is not a whole number >= 1 becomes 0, which
             // validation refuses with the -a flag named.
             let whole = batch.fract() == 0.0 && (1.0..=u32::MAX as f64).contains(&batch);
@@ -155,7 +156,7 @@ impl Cs184Flags {
             });
             set.push("adaptive");
         }
-        if let Some(&[x, y, dx, dy]) = self.cell.as_deref() {
+        if let Some(&[.., x, y, dx, dy]) = self.cell.as_deref() {
             s.image.cell = Some(PixelRect::new(x, y, dx, dy));
             set.push("cell");
         }

@@ -138,3 +138,16 @@ fn every_setting_has_a_flag_or_a_cs184_spelling() {
         );
     }
 }
+
+#[test]
+fn a_cs184_flag_given_twice_keeps_its_last_values() {
+    let e = explicit(&[
+        "candela", "-r", "48", "36", "-r", "64", "40", "-p", "0", "0", "8", "8", "-p", "1", "1",
+        "4", "4",
+    ]);
+    assert_eq!(
+        (e["width"].as_u64(), e["height"].as_u64()),
+        (Some(64), Some(40))
+    );
+    assert_eq!(e["cell"]["x"], 1);
+}
