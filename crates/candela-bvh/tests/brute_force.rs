@@ -10,26 +10,7 @@ use candela_bvh::{
 };
 use glam::Vec3;
 
-/// SplitMix64: a seeded generator, so every failure reproduces.
-struct Rng(u64);
-impl Rng {
-    fn u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn f32(&mut self) -> f32 {
-        (self.u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.f32()
-    }
-    fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
-        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
-    }
-}
+use candela_testkit::SplitMix64 as Rng;
 
 /// Entry distance of the ray into the box in f64 (`t >= 0`), if it hits.
 fn box_hit(o: Vec3, d: Vec3, b: &Aabb, t_max: f32) -> Option<f32> {
@@ -97,7 +78,7 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
                 let target = if boxes.is_empty() || k % 4 == 3 {
                     o + rng.vec(-1.0, 1.0)
                 } else {
-                    let b = boxes[rng.u64() as usize % boxes.len()];
+                    let b = boxes[rng.next_u64() as usize % boxes.len()];
                     b.min + (b.max - b.min) * rng.vec(0.05, 0.95)
                 };
                 let d = (target - o).normalize_or(Vec3::X);

@@ -2,15 +2,13 @@
 //! written), and the Part 5 flags. Renders the built-in demo scene small.
 
 use candela_image::{read_exr_layers, read_png};
+use candela_testkit::TempDir;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// A fresh, empty folder for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("candela-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp folder");
-    dir
+/// A fresh, empty folder for one test, removed afterwards.
+fn scratch(name: &str) -> TempDir {
+    TempDir::new(&format!("cli-{name}"))
 }
 
 /// Runs `candela` on the demo scene at 48 × 36, on 2 threads unless `args`

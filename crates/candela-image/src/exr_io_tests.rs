@@ -1,7 +1,7 @@
 //! Round trips and channel naming of the EXR writer and reader.
 
 use super::*;
-use crate::test_util::{SplitMix64, TempDir};
+use candela_testkit::{SplitMix64, TempDir};
 
 /// Random bit patterns, so the round trip checks every mantissa bit,
 /// plus the special values an EXR must carry through.

@@ -16,9 +16,6 @@ pub mod metrics;
 mod png_io;
 mod tonemap;
 
-#[cfg(test)]
-mod test_util;
-
 pub use atomic::atomic_write;
 pub use buffer::{GrayImage, RgbImage};
 pub use colormap::{rate_colormap, rate_image};

@@ -31,12 +31,6 @@ use std::sync::Arc;
 const SIZE: u32 = 32;
 const BATCHES: u64 = 16;
 
-fn temp_dir(label: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("candela-{label}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
 /// A 4 × 4 texture with no symmetry, values in [0.05, 0.95].
 fn texture_image() -> RgbImage {
     RgbImage::from_fn(4, 4, |x, y| {
@@ -140,7 +134,7 @@ fn image_mean(image: &RgbImage) -> [f64; 3] {
 
 #[test]
 fn a_textured_quad_renders_the_texture() {
-    let dir = temp_dir("textured-quad");
+    let dir = candela_testkit::TempDir::new("textured-quad");
     let path = dir.join("albedo.exr");
     write_exr(&path, &ExrLayers::beauty(texture_image())).expect("write texture");
     let texture = ImageTexture::load(&path).expect("texture loads");
@@ -228,7 +222,7 @@ fn a_textured_quad_renders_the_texture() {
 
 #[test]
 fn a_missing_texture_is_reported_once_and_the_flat_colour_used() {
-    let dir = temp_dir("missing-texture");
+    let dir = candela_testkit::TempDir::new("missing-texture");
     let path = dir.join("nowhere.png");
     let mut desc = textured_quad(30f32.to_radians().tan(), textured("a", &path));
     desc.materials.push(textured("b", &path));

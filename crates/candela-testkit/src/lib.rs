@@ -3,6 +3,7 @@
 //! tests, and the way to the shared scene corpus beside the repository.
 #![warn(missing_docs)]
 
+use glam::Vec3;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -30,8 +31,14 @@ impl TempDir {
     }
 
     /// A path inside the folder.
-    pub fn join(&self, name: &str) -> PathBuf {
+    pub fn join(&self, name: impl AsRef<Path>) -> PathBuf {
         self.0.join(name)
+    }
+}
+
+impl AsRef<Path> for TempDir {
+    fn as_ref(&self) -> &Path {
+        &self.0
     }
 }
 
@@ -42,9 +49,10 @@ impl Drop for TempDir {
 }
 
 /// A small deterministic generator (SplitMix64, Steele et al. 2014) so
-/// statistical tests use fixed seeds without a dependency.
+/// statistical tests use fixed seeds and every failure reproduces. The
+/// field is the state: `SplitMix64(seed)`.
 #[derive(Clone, Debug)]
-pub struct SplitMix64(u64);
+pub struct SplitMix64(pub u64);
 
 impl SplitMix64 {
     /// A generator seeded with `seed`.
@@ -67,13 +75,33 @@ impl SplitMix64 {
     }
 
     /// Uniform in `[0, 1)` as an `f32` (24 bits).
-    pub fn uniform_f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+    pub fn f32(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
     }
 
     /// Uniform in `[lo, hi)`.
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.uniform()
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.f32()
+    }
+
+    /// A point uniform in the cube `[lo, hi)^3`.
+    pub fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
+        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
+    }
+
+    /// A direction uniform on the unit sphere (by rejection).
+    pub fn dir(&mut self) -> Vec3 {
+        loop {
+            let v = self.vec(-1.0, 1.0);
+            if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+
+    /// 10^x for x uniform in `[lo, hi]`: scales spread over decades.
+    pub fn log(&mut self, lo: f32, hi: f32) -> f32 {
+        10f32.powf(lo + (hi - lo) * self.f32())
     }
 }
 

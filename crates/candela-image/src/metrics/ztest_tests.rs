@@ -1,7 +1,7 @@
 //! Tests of the block z-test on simulated renders with known truth.
 
 use super::*;
-use crate::test_util::{SplitMix64, TempDir};
+use candela_testkit::{SplitMix64, TempDir};
 
 const SIZE: (usize, usize) = (32, 24);
 const SPP: usize = 16;

@@ -4,19 +4,7 @@
 use super::*;
 use crate::shape::intersect_sphere;
 
-struct Rng(u64);
-impl Rng {
-    fn f32(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
-        Vec3::new(self.f32(), self.f32(), self.f32()) * (hi - lo) + Vec3::splat(lo)
-    }
-}
+use candela_testkit::SplitMix64 as Rng;
 
 /// Closest hit by testing every primitive: (t, primitive).
 fn brute(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], ray: &Ray) -> Option<(f32, PrimRef)> {

@@ -5,32 +5,8 @@ use super::*;
 use crate::geometry::Ray;
 use glam::{DVec3, Vec3};
 
-/// SplitMix64, seeded: failures reproduce.
-pub(super) struct Rng(pub u64);
-impl Rng {
-    pub fn f32(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-    pub fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
-        Vec3::new(self.f32(), self.f32(), self.f32()) * (hi - lo) + Vec3::splat(lo)
-    }
-    pub fn dir(&mut self) -> Vec3 {
-        loop {
-            let v = self.vec(-1.0, 1.0);
-            if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-    /// 10^x for x uniform in [lo, hi].
-    pub fn log(&mut self, lo: f32, hi: f32) -> f32 {
-        10f32.powf(lo + (hi - lo) * self.f32())
-    }
-}
+/// The seeded generator every shape test uses.
+pub(super) use candela_testkit::SplitMix64 as Rng;
 
 /// Möller–Trumbore in f64: (t, b1, b2) of the plane hit, no range checks.
 pub(super) fn triangle_f64(o: Vec3, d: Vec3, v: &[Vec3; 3]) -> Option<(f64, f64, f64)> {
