@@ -35,6 +35,9 @@ const ALPHAS: [f32; 7] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0];
 const THETAS_DEG: [f32; 3] = [0.0, 60.0, 85.0];
 const IOR: f32 = 1.5;
 
+/// Builds a white-furnace BSDF on a distribution.
+type FurnaceModel = fn(MicrofacetDistribution) -> Bsdf;
+
 fn furnace_conductor(distribution: MicrofacetDistribution) -> Bsdf {
     Bsdf::Microfacet {
         distribution,
@@ -59,7 +62,7 @@ fn direction(theta_deg: f32, side: f32) -> Vec3 {
 
 #[test]
 fn energy_loss_curve() {
-    let models: [(&str, fn(MicrofacetDistribution) -> Bsdf, f32); 2] = [
+    let models: [(&str, FurnaceModel, f32); 2] = [
         ("conductor", furnace_conductor, 1.0),
         ("glass", furnace_glass, IOR),
     ];
