@@ -49,6 +49,9 @@ mod ggx;
 mod microfacet;
 #[cfg(test)]
 mod microfacet_tests;
+mod plastic;
+#[cfg(test)]
+mod plastic_tests;
 mod rough_dielectric;
 #[cfg(test)]
 mod rough_dielectric_tests;
@@ -63,6 +66,7 @@ mod thin_dielectric_tests;
 
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
+pub use plastic::Plastic;
 
 use rough_dielectric::RoughDielectric;
 
@@ -159,6 +163,10 @@ pub enum Bsdf {
         /// outside.
         ior: f32,
     },
+    /// Smooth plastic (Mitsuba's `plastic`): a diffuse base under a smooth
+    /// dielectric coating, a delta specular lobe plus a diffuse one with
+    /// the internal-scattering renormalisation (see `plastic.rs`).
+    Plastic(Plastic),
     /// Rough conductor: Beckmann or GGX microfacets, exact conductor
     /// Fresnel, height-correlated Smith masking-shadowing (see
     /// `microfacet.rs`).
@@ -183,6 +191,7 @@ impl Bsdf {
             Bsdf::Refraction { .. } => specular::REFRACTION_FLAGS,
             Bsdf::ThinGlass { .. } => specular::GLASS_FLAGS,
             Bsdf::RoughGlass { .. } => rough_dielectric::FLAGS,
+            Bsdf::Plastic(_) => plastic::FLAGS,
             Bsdf::Microfacet { .. } => microfacet::FLAGS,
         }
     }
@@ -202,6 +211,7 @@ impl Bsdf {
             | Bsdf::Refraction { .. }
             | Bsdf::ThinGlass { .. } => Vec3::ZERO,
             Bsdf::RoughGlass { .. } => self.rough_dielectric().map_or(Vec3::ZERO, |b| b.f(wo, wi)),
+            Bsdf::Plastic(plastic) => plastic.f(wo, wi),
             Bsdf::Microfacet {
                 distribution,
                 eta,
@@ -231,6 +241,7 @@ impl Bsdf {
                 ior,
             } => specular::sample_thin_glass(reflectance, transmittance, ior, wo, u1),
             Bsdf::RoughGlass { .. } => self.rough_dielectric()?.sample(wo, u1, u2),
+            Bsdf::Plastic(plastic) => plastic.sample(wo, u1, u2),
             Bsdf::Microfacet {
                 distribution,
                 eta,
@@ -249,6 +260,7 @@ impl Bsdf {
             | Bsdf::Refraction { .. }
             | Bsdf::ThinGlass { .. } => 0.0,
             Bsdf::RoughGlass { .. } => self.rough_dielectric().map_or(0.0, |b| b.pdf(wo, wi)),
+            Bsdf::Plastic(plastic) => plastic.pdf(wo, wi),
             Bsdf::Microfacet { distribution, .. } => microfacet::pdf(distribution, wo, wi),
         }
     }
@@ -264,6 +276,7 @@ impl Bsdf {
             | Bsdf::Refraction { transmittance, .. }
             | Bsdf::ThinGlass { transmittance, .. }
             | Bsdf::RoughGlass { transmittance, .. } => transmittance,
+            Bsdf::Plastic(plastic) => plastic.diffuse(),
             Bsdf::Microfacet { eta, k, .. } => fresnel::fresnel_conductor(1.0, eta, k),
         }
     }

@@ -23,7 +23,12 @@ pub(crate) fn reflect_local(wo: Vec3) -> Vec3 {
 }
 
 /// A delta sample with the given weight and discrete probability.
-fn delta_sample(wi: Vec3, weight: Vec3, probability: f32, flags: BsdfFlags) -> Option<BsdfSample> {
+pub(super) fn delta_sample(
+    wi: Vec3,
+    weight: Vec3,
+    probability: f32,
+    flags: BsdfFlags,
+) -> Option<BsdfSample> {
     let cos = wi.z.abs();
     (cos > 0.0 && probability > 0.0).then(|| BsdfSample {
         wi,
