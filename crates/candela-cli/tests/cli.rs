@@ -3,7 +3,7 @@
 
 use candela_image::{read_exr_layers, read_png};
 use candela_testkit::TempDir;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 /// A fresh, empty folder for one test, removed afterwards.

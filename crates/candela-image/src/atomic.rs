@@ -126,7 +126,7 @@ impl Drop for RemoveOnDrop {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_util::TempDir;
+    use candela_testkit::TempDir;
     use std::io::Write;
 
     fn entries(dir: &Path) -> Vec<String> {

@@ -149,9 +149,9 @@ fn decode_samples(rows: &[u8], line_size: usize, info: &png::OutputInfo) -> Vec<
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_util::TempDir;
     use crate::tonemap::srgb_encode;
     use crate::ToneCurve;
+    use candela_testkit::TempDir;
 
     fn gradient() -> RgbImage {
         RgbImage::from_fn(37, 11, |x, y| {

@@ -8,7 +8,7 @@
 //! returned by name as [`Unsupported`] (the scene reports it once), never
 //! dropped silently.
 
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, MicrofacetDistribution};
 use crate::shape::SurfaceHit;
 use crate::texture::{ImageTexture, TextureCache};
 use candela_scene::{BsdfDesc, MaterialDesc, TextureSlot};
@@ -53,23 +53,22 @@ impl Material {
                 transmittance,
                 roughness,
                 ior,
-            } => {
-                unsupported.extend(rendered_smooth(desc, "glass", roughness));
-                Some(Bsdf::Glass {
-                    reflectance,
-                    transmittance,
-                    ior,
-                })
-            }
+            } => Some(glass(reflectance, transmittance, roughness, ior)),
+            // Refraction alone has no rough counterpart: rough, it becomes
+            // rough glass whose reflection is absorbed.
             BsdfDesc::Refraction {
                 transmittance,
                 roughness,
                 ior,
-            } => {
-                unsupported.extend(rendered_smooth(desc, "refraction", roughness));
-                Some(Bsdf::Refraction { transmittance, ior })
-            }
-            BsdfDesc::Microfacet { alpha, eta, k } => Some(Bsdf::Microfacet { alpha, eta, k }),
+            } if roughness > 0.0 => Some(glass(Vec3::ZERO, transmittance, roughness, ior)),
+            BsdfDesc::Refraction {
+                transmittance, ior, ..
+            } => Some(Bsdf::Refraction { transmittance, ior }),
+            BsdfDesc::Microfacet { alpha, eta, k } => Some(Bsdf::Microfacet {
+                distribution: MicrofacetDistribution::beckmann(alpha),
+                eta,
+                k,
+            }),
             BsdfDesc::Black => None,
         };
         let (mut diffuse_texture, mut diffuse_scale) = (None, 1.0);
@@ -115,12 +114,21 @@ impl Material {
     }
 }
 
-/// Rough dielectrics are not implemented: they render smooth, and say so.
-fn rendered_smooth(desc: &MaterialDesc, kind: &str, roughness: f32) -> Option<Unsupported> {
-    (roughness > 0.0).then(|| {
-        Unsupported(format!(
-            "material '{}': rough {kind} (roughness {roughness}; rendered smooth)",
-            desc.name
-        ))
-    })
+/// CS184 glass: smooth, or with `roughness` r > 0 a Beckmann rough
+/// dielectric of α = r (the convention of CS184's `<microfacet>` alpha).
+fn glass(reflectance: Vec3, transmittance: Vec3, roughness: f32, ior: f32) -> Bsdf {
+    if roughness > 0.0 {
+        Bsdf::RoughGlass {
+            distribution: MicrofacetDistribution::beckmann(roughness),
+            reflectance,
+            transmittance,
+            ior,
+        }
+    } else {
+        Bsdf::Glass {
+            reflectance,
+            transmittance,
+            ior,
+        }
+    }
 }

@@ -25,7 +25,7 @@ use candela_render::scene::{Scene, SceneOptions};
 use candela_render::texture::ImageTexture;
 use candela_scene::{BsdfDesc, ColorSpace, MaterialDesc, MeshDesc, SceneDesc, TextureRef};
 use glam::{Vec2, Vec3};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 const SIZE: u32 = 32;

@@ -226,10 +226,11 @@ fn demo_scene_is_a_lit_cornell_box() {
     let red: fn(Vec3) -> bool = |a| a.x > 2.0 * a.y;
     let green: fn(Vec3) -> bool = |a| a.y > 2.0 * a.x;
     assert!((wall_x(red) + 1.0).abs() < 1e-6 && (wall_x(green) - 1.0).abs() < 1e-6);
-    // Camera like the CS184 boxes: at (0,0,3), looking down -z, +y up.
+    // Its own camera at half the box's height, 2.2 in front of the open
+    // side, looking down -z, +y up (the demo renders from it).
     let c = &s.cameras[0];
     let m = c.world_from_camera;
-    assert!(close(m.w_axis.xyz(), Vec3::new(0., 0., 3.)));
+    assert!(close(m.w_axis.xyz(), Vec3::new(0., 0.75, 3.2)));
     assert!(close(m.transform_vector3(Vec3::NEG_Z), Vec3::NEG_Z));
     assert!(close(m.transform_vector3(Vec3::Y), Vec3::Y));
     let kinds: Vec<_> = s
@@ -244,6 +245,10 @@ fn demo_scene_is_a_lit_cornell_box() {
         .spheres
         .iter()
         .all(|sp| (sp.radius - 0.3).abs() < 1e-6 && (sp.center.y - 0.3).abs() < 1e-6));
+    // It suggests its camera, a sample count and a firefly clamp.
+    assert!(l.hints.file_camera);
+    assert_eq!(l.hints.spp, Some(candela_scene::DEMO_SPP));
+    assert_eq!(l.hints.clamp, Some(candela_scene::DEMO_CLAMP));
 }
 
 #[test]

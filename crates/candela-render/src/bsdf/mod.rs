@@ -16,7 +16,8 @@
 //! - **Two-sided shading**: every BSDF accepts `wo` on either side. Opaque
 //!   BSDFs (diffuse, mirror, conductor) behave as if the frame were flipped
 //!   so that `wo.z > 0`, so a caller *may* flip the frame for them, but need
-//!   not. Dielectrics ([`Bsdf::Glass`], [`Bsdf::Refraction`]) read the side
+//!   not. Dielectrics ([`Bsdf::Glass`], [`Bsdf::Refraction`],
+//!   [`Bsdf::RoughGlass`]) read the side
 //!   of `wo` to know whether the path is entering (`wo.z > 0`, relative IOR
 //!   `ior`) or leaving (`wo.z < 0`, relative IOR `1 / ior`), so the caller
 //!   **must not flip** the frame for them. The safe rule: never flip.
@@ -24,28 +25,50 @@
 //!   the camera, so refraction scales by `1/η²` with η the relative IOR
 //!   (transmitted side over incident side of the light path as traced from
 //!   the camera); an adjoint (importance) transport would omit that factor.
+//!   Transmission then obeys the generalised reciprocity
+//!   f(wo, wi)·η(wi)² = f(wi, wo)·η(wo)², η(w) the absolute IOR on the side
+//!   of w; energy is conserved once refracted throughput is multiplied back
+//!   by η² (what the furnace tests check).
 //! - **Delta lobes** (flag [`BsdfFlags::SPECULAR`]): `f` and `pdf` return
 //!   zero for every given pair; `sample` returns the one direction with
 //!   `f = weight / |cos θi|` and `pdf` the discrete probability of choosing
 //!   that lobe (1 for a single lobe), so `weight()` works uniformly.
 
+mod beckmann;
 mod diffuse;
 #[cfg(test)]
 mod diffuse_tests;
+mod distribution;
+#[cfg(test)]
+mod distribution_tests;
 mod flags;
 mod fresnel;
+#[cfg(test)]
+mod furnace_tests;
+mod ggx;
 mod microfacet;
 #[cfg(test)]
 mod microfacet_tests;
+mod plastic;
+#[cfg(test)]
+mod plastic_tests;
+mod rough_dielectric;
+#[cfg(test)]
+mod rough_dielectric_tests;
 mod special;
 mod specular;
 #[cfg(test)]
 mod specular_tests;
 #[cfg(test)]
 mod test_support;
-mod visible_normals;
+#[cfg(test)]
+mod thin_dielectric_tests;
 
+pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
+pub use plastic::Plastic;
+
+use rough_dielectric::RoughDielectric;
 
 use glam::{Vec2, Vec3};
 
@@ -111,12 +134,46 @@ pub enum Bsdf {
         /// Index of refraction of the inside relative to the outside.
         ior: f32,
     },
-    /// Rough conductor: Beckmann microfacets, exact conductor Fresnel,
-    /// height-correlated Smith masking-shadowing (see `microfacet.rs`).
+    /// Smooth glass of zero thickness (a window pane, delta): reflects with
+    /// the probability 2F/(1 + F) that sums the bounces inside the slab
+    /// (F the Fresnel reflectance of one face), else passes straight
+    /// through (`wi = −wo`) with no η² scaling, since it leaves into the
+    /// medium it came from. Reflection weight `reflectance`, transmission
+    /// weight `transmittance`. Either side.
+    ThinGlass {
+        /// Tint of the reflected light.
+        reflectance: Vec3,
+        /// Tint of the transmitted light.
+        transmittance: Vec3,
+        /// Index of refraction of the pane relative to its surroundings.
+        ior: f32,
+    },
+    /// Rough dielectric (Walter et al. 2007): glossy reflection and
+    /// refraction through microfacets with the exact dielectric Fresnel
+    /// term, `transmittance / η²`-scaled refraction (radiance transport),
+    /// total internal reflection; see `rough_dielectric.rs`.
+    RoughGlass {
+        /// The distribution of microfacet normals.
+        distribution: MicrofacetDistribution,
+        /// Tint of the reflected light.
+        reflectance: Vec3,
+        /// Tint of the refracted light.
+        transmittance: Vec3,
+        /// Index of refraction of the inside (the −Z side) relative to the
+        /// outside.
+        ior: f32,
+    },
+    /// Smooth plastic (Mitsuba's `plastic`): a diffuse base under a smooth
+    /// dielectric coating, a delta specular lobe plus a diffuse one with
+    /// the internal-scattering renormalisation (see `plastic.rs`).
+    Plastic(Plastic),
+    /// Rough conductor: Beckmann or GGX microfacets, exact conductor
+    /// Fresnel, height-correlated Smith masking-shadowing (see
+    /// `microfacet.rs`).
     Microfacet {
-        /// Beckmann roughness α: the RMS microfacet slope (α/√2 per axis);
-        /// clamped to 1e-3.
-        alpha: f32,
+        /// The distribution of microfacet normals (CS184's `<microfacet>`:
+        /// isotropic Beckmann).
+        distribution: MicrofacetDistribution,
         /// Real part of the conductor's IOR, per channel.
         eta: Vec3,
         /// Imaginary part (extinction coefficient), per channel.
@@ -132,6 +189,9 @@ impl Bsdf {
             Bsdf::Mirror { .. } => specular::MIRROR_FLAGS,
             Bsdf::Glass { .. } => specular::GLASS_FLAGS,
             Bsdf::Refraction { .. } => specular::REFRACTION_FLAGS,
+            Bsdf::ThinGlass { .. } => specular::GLASS_FLAGS,
+            Bsdf::RoughGlass { .. } => rough_dielectric::FLAGS,
+            Bsdf::Plastic(_) => plastic::FLAGS,
             Bsdf::Microfacet { .. } => microfacet::FLAGS,
         }
     }
@@ -146,8 +206,17 @@ impl Bsdf {
     pub fn f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         match *self {
             Bsdf::Diffuse { albedo } => diffuse::f(albedo, wo, wi),
-            Bsdf::Mirror { .. } | Bsdf::Glass { .. } | Bsdf::Refraction { .. } => Vec3::ZERO,
-            Bsdf::Microfacet { alpha, eta, k } => microfacet::f(alpha, eta, k, wo, wi),
+            Bsdf::Mirror { .. }
+            | Bsdf::Glass { .. }
+            | Bsdf::Refraction { .. }
+            | Bsdf::ThinGlass { .. } => Vec3::ZERO,
+            Bsdf::RoughGlass { .. } => self.rough_dielectric().map_or(Vec3::ZERO, |b| b.f(wo, wi)),
+            Bsdf::Plastic(plastic) => plastic.f(wo, wi),
+            Bsdf::Microfacet {
+                distribution,
+                eta,
+                k,
+            } => microfacet::f(distribution, eta, k, wo, wi),
         }
     }
 
@@ -166,7 +235,18 @@ impl Bsdf {
             Bsdf::Refraction { transmittance, ior } => {
                 specular::sample_refraction(transmittance, ior, wo)
             }
-            Bsdf::Microfacet { alpha, eta, k } => microfacet::sample(alpha, eta, k, wo, u2),
+            Bsdf::ThinGlass {
+                reflectance,
+                transmittance,
+                ior,
+            } => specular::sample_thin_glass(reflectance, transmittance, ior, wo, u1),
+            Bsdf::RoughGlass { .. } => self.rough_dielectric()?.sample(wo, u1, u2),
+            Bsdf::Plastic(plastic) => plastic.sample(wo, u1, u2),
+            Bsdf::Microfacet {
+                distribution,
+                eta,
+                k,
+            } => microfacet::sample(distribution, eta, k, wo, u2),
         }
     }
 
@@ -175,8 +255,13 @@ impl Bsdf {
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         match *self {
             Bsdf::Diffuse { .. } => diffuse::pdf(wo, wi),
-            Bsdf::Mirror { .. } | Bsdf::Glass { .. } | Bsdf::Refraction { .. } => 0.0,
-            Bsdf::Microfacet { alpha, .. } => microfacet::pdf(alpha, wo, wi),
+            Bsdf::Mirror { .. }
+            | Bsdf::Glass { .. }
+            | Bsdf::Refraction { .. }
+            | Bsdf::ThinGlass { .. } => 0.0,
+            Bsdf::RoughGlass { .. } => self.rough_dielectric().map_or(0.0, |b| b.pdf(wo, wi)),
+            Bsdf::Plastic(plastic) => plastic.pdf(wo, wi),
+            Bsdf::Microfacet { distribution, .. } => microfacet::pdf(distribution, wo, wi),
         }
     }
 
@@ -187,10 +272,32 @@ impl Bsdf {
         match *self {
             Bsdf::Diffuse { albedo } => albedo,
             Bsdf::Mirror { reflectance } => reflectance,
-            Bsdf::Glass { transmittance, .. } | Bsdf::Refraction { transmittance, .. } => {
-                transmittance
-            }
+            Bsdf::Glass { transmittance, .. }
+            | Bsdf::Refraction { transmittance, .. }
+            | Bsdf::ThinGlass { transmittance, .. }
+            | Bsdf::RoughGlass { transmittance, .. } => transmittance,
+            Bsdf::Plastic(plastic) => plastic.diffuse(),
             Bsdf::Microfacet { eta, k, .. } => fresnel::fresnel_conductor(1.0, eta, k),
+        }
+    }
+}
+
+impl Bsdf {
+    /// The rough dielectric's parameters, if this is one.
+    fn rough_dielectric(&self) -> Option<RoughDielectric> {
+        match *self {
+            Bsdf::RoughGlass {
+                distribution,
+                reflectance,
+                transmittance,
+                ior,
+            } => Some(RoughDielectric {
+                dist: distribution,
+                reflectance,
+                transmittance,
+                ior,
+            }),
+            _ => None,
         }
     }
 }

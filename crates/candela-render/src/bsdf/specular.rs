@@ -1,4 +1,5 @@
-//! Smooth (delta) interfaces: the mirror, glass, and refraction alone.
+//! Smooth (delta) interfaces: the mirror, glass, refraction alone, and a
+//! thin pane of glass.
 //!
 //! All three scatter into single directions, so `f` and `pdf` are zero for
 //! any given pair and only `sample` is meaningful (see the module docs of
@@ -22,7 +23,12 @@ pub(crate) fn reflect_local(wo: Vec3) -> Vec3 {
 }
 
 /// A delta sample with the given weight and discrete probability.
-fn delta_sample(wi: Vec3, weight: Vec3, probability: f32, flags: BsdfFlags) -> Option<BsdfSample> {
+pub(super) fn delta_sample(
+    wi: Vec3,
+    weight: Vec3,
+    probability: f32,
+    flags: BsdfFlags,
+) -> Option<BsdfSample> {
     let cos = wi.z.abs();
     (cos > 0.0 && probability > 0.0).then(|| BsdfSample {
         wi,
@@ -79,4 +85,36 @@ pub(super) fn sample_glass(
 pub(super) fn sample_refraction(transmittance: Vec3, ior: f32, wo: Vec3) -> Option<BsdfSample> {
     let (wi, eta) = refract_local(wo, ior)?;
     delta_sample(wi, transmittance / (eta * eta), 1.0, REFRACTION_FLAGS)
+}
+
+/// The reflectance of a thin slab (a window pane) of relative IOR `ior`
+/// seen at `cos_i`, counting every internal bounce: with R the Fresnel
+/// reflectance of one face and T = 1 − R, the light reflects R, or enters and
+/// leaves after 2k + 1 internal reflections, adding
+/// T² R Σₖ R²ᵏ = T² R / (1 − R²). In total 2R / (1 + R) (absorption-free
+/// slab; Mitsuba's `thindielectric`). The same from both sides, since the
+/// slab has the same medium on both.
+pub(crate) fn thin_slab_reflectance(cos_i: f32, ior: f32) -> f32 {
+    let single = fresnel_dielectric(cos_i.abs(), ior);
+    2.0 * single / (1.0 + single)
+}
+
+/// A thin pane: reflects with probability R = [`thin_slab_reflectance`]
+/// (chosen by `u1 < R`), else passes straight through (`wi = −wo`): the two
+/// parallel faces undo each other's refraction, so the ray leaves in its
+/// original direction, into the same medium, without any η² scaling.
+/// Weights: `reflectance` and `transmittance`.
+pub(super) fn sample_thin_glass(
+    reflectance: Vec3,
+    transmittance: Vec3,
+    ior: f32,
+    wo: Vec3,
+    u1: f32,
+) -> Option<BsdfSample> {
+    let r = thin_slab_reflectance(wo.z, ior);
+    if u1 < r {
+        delta_sample(reflect_local(wo), reflectance, r, MIRROR_FLAGS)
+    } else {
+        delta_sample(-wo, transmittance, 1.0 - r, REFRACTION_FLAGS)
+    }
 }

@@ -182,3 +182,27 @@ pub(crate) fn hemisphere_integral(wo: Vec3, g: impl Fn(Vec3) -> f32) -> f32 {
     }
     total as f32
 }
+
+/// The directional albedo by the BSDF's own sampling as *energy*: refracted
+/// throughput is multiplied back by η² (η the relative IOR, far side over
+/// the side of `wo`, from the inside-over-outside `ior`), undoing the
+/// radiance scaling of the module docs. At most 1 for a passive interface;
+/// pass `ior = 1` for BSDFs that do not bend light.
+pub(crate) fn energy_albedo_by_sampling(bsdf: &Bsdf, wo: Vec3, ior: f32, n: u32) -> Estimate {
+    let mut sampler = Sampler::new(SamplerKind::Independent, 31);
+    estimate(n, |i| {
+        let (u1, u2) = uniforms(&mut sampler, i);
+        bsdf.sample(wo, u1, u2)
+            .map_or(Vec3::ZERO, |s| s.weight() * energy_factor(wo, s.wi, ior))
+    })
+}
+
+/// η² for a refracted pair, 1 for a reflected one (see
+/// [`energy_albedo_by_sampling`]).
+pub(crate) fn energy_factor(wo: Vec3, wi: Vec3, ior: f32) -> f32 {
+    if wo.z * wi.z >= 0.0 {
+        return 1.0;
+    }
+    let eta = if wo.z > 0.0 { ior } else { 1.0 / ior };
+    eta * eta
+}

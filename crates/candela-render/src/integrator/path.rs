@@ -168,11 +168,16 @@ fn sample_direction(
 /// the dielectric put into the sample's weight. 1 for every other BSDF.
 fn refraction_eta2(bsdf: &Bsdf, wo: Vec3) -> f32 {
     match *bsdf {
-        Bsdf::Glass { ior, .. } | Bsdf::Refraction { ior, .. } => {
+        Bsdf::Glass { ior, .. } | Bsdf::Refraction { ior, .. } | Bsdf::RoughGlass { ior, .. } => {
             let eta = if wo.z > 0.0 { ior } else { 1.0 / ior };
             eta * eta
         }
-        Bsdf::Diffuse { .. } | Bsdf::Mirror { .. } | Bsdf::Microfacet { .. } => 1.0,
+        // A thin pane passes light straight through: no change of medium.
+        Bsdf::Diffuse { .. }
+        | Bsdf::Mirror { .. }
+        | Bsdf::Microfacet { .. }
+        | Bsdf::ThinGlass { .. }
+        | Bsdf::Plastic(_) => 1.0,
     }
 }
 
