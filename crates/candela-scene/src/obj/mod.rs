@@ -46,7 +46,12 @@ pub(crate) fn load_file(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadE
             }
             let mtl_text = read(&file)?;
             let mut mtl_warnings = Collector::new(file.clone(), opts.strict);
-            materials.extend(mtl::read_mtl(&mtl_text, &file, opts.strict, &mut mtl_warnings)?);
+            materials.extend(mtl::read_mtl(
+                &mtl_text,
+                &file,
+                opts.strict,
+                &mut mtl_warnings,
+            )?);
             // The library's warnings join the OBJ's, naming the library.
             for w in mtl_warnings.finish().warnings {
                 let element = format!("{}: {}", file.display(), w.element);

@@ -128,11 +128,7 @@ pub(crate) fn read(
                         "faces need a vertex_indices list property".into(),
                     ));
                 };
-                report_skipped(
-                    element,
-                    |p| p != element.properties[list].name(),
-                    warnings,
-                )?;
+                report_skipped(element, |p| p != element.properties[list].name(), warnings)?;
                 for i in 0..element.count {
                     for (k, property) in element.properties.iter().enumerate() {
                         if k != list {
@@ -168,7 +164,8 @@ pub(crate) fn read(
                             ));
                         }
                         for j in 1..corners.len() - 1 {
-                            mesh.triangles.push([corners[0], corners[j], corners[j + 1]]);
+                            mesh.triangles
+                                .push([corners[0], corners[j], corners[j + 1]]);
                         }
                     }
                 }
