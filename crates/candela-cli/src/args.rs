@@ -46,7 +46,7 @@ pub enum Command {
 /// Flags of a render.
 #[derive(Args, Debug, Clone)]
 pub struct RenderArgs {
-    /// Scene file (.dae). Omit it to render the built-in demo scene.
+    /// Scene file: .dae (COLLADA), .obj (Wavefront OBJ + MTL) or .ply (PLY). Omit it to render the built-in demo scene.
     pub scene: Option<PathBuf>,
 
     /// Output image: .png (8-bit sRGB) or .exr (linear float, with albedo

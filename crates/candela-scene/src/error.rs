@@ -49,6 +49,11 @@ pub enum ErrorKind {
     BadValue,
     /// An unsupported feature, reported as an error because of strict mode.
     Unsupported,
+    /// A text format's file (or header) is not UTF-8 (or ASCII) text.
+    NotText,
+    /// A binary or line-based file ends before the data its header or
+    /// statements promise.
+    Truncated,
     // --- XML-based formats ---
     /// The text is not well-formed XML.
     NotXml,

@@ -19,11 +19,23 @@ pub(crate) struct Format {
 }
 
 /// Every format, in the order they are listed in messages.
-pub(crate) const FORMATS: &[Format] = &[Format {
-    name: "COLLADA",
-    extensions: &["dae"],
-    load: crate::collada::load_file,
-}];
+pub(crate) const FORMATS: &[Format] = &[
+    Format {
+        name: "COLLADA",
+        extensions: &["dae"],
+        load: crate::collada::load_file,
+    },
+    Format {
+        name: "Wavefront OBJ",
+        extensions: &["obj"],
+        load: crate::obj::load_file,
+    },
+    Format {
+        name: "PLY",
+        extensions: &["ply"],
+        load: crate::ply::load_file,
+    },
+];
 
 /// The format whose extensions include `path`'s (case-insensitive), or an
 /// [`ErrorKind::UnknownFormat`] error naming it and the supported ones.

@@ -16,6 +16,8 @@ mod error;
 mod formats;
 mod hints;
 mod lamps;
+mod obj;
+mod ply;
 mod report;
 mod text_file;
 

@@ -1,6 +1,6 @@
-//! Reading a text scene file, for every text-based format: the size guard,
-//! UTF-8 checking with the place of the first bad byte, and byte offsets
-//! turned into `line:col`.
+//! Reading a scene file, for every format: the size guard, UTF-8 checking
+//! with the place of the first bad byte, and byte offsets turned into
+//! `line:col`.
 
 use crate::desc::SourceLoc;
 use crate::error::{ErrorKind, LoadError};
@@ -10,8 +10,8 @@ use std::path::Path;
 /// fast instead of being read.
 pub(crate) const MAX_FILE_BYTES: u64 = 512 << 20;
 
-/// Reads `path` as UTF-8 text, refusing files over [`MAX_FILE_BYTES`].
-pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
+/// Reads `path` as bytes, refusing files over [`MAX_FILE_BYTES`].
+pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, LoadError> {
     let io =
         |e: std::io::Error| LoadError::whole_file(path.to_path_buf(), ErrorKind::Io, e.to_string());
     let meta = std::fs::metadata(path).map_err(io)?;
@@ -22,19 +22,24 @@ pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
             format!("{} bytes exceeds the limit of {MAX_FILE_BYTES}", meta.len()),
         ));
     }
-    let bytes = std::fs::read(path).map_err(io)?;
+    std::fs::read(path).map_err(io)
+}
+
+/// Reads `path` as UTF-8 text, refusing files over [`MAX_FILE_BYTES`]; text
+/// that is not UTF-8 is an [`ErrorKind::NotXml`] error (the XML formats'
+/// kind; line-based formats use [`utf8`] with [`ErrorKind::NotText`]).
+pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
+    utf8(read_bytes(path)?, path, ErrorKind::NotXml)
+}
+
+/// `bytes` as UTF-8 text, or a `kind` error at the first bad byte.
+pub(crate) fn utf8(bytes: Vec<u8>, path: &Path, kind: ErrorKind) -> Result<String, LoadError> {
     String::from_utf8(bytes).map_err(|e| {
         let byte = e.utf8_error().valid_up_to();
         let valid = std::str::from_utf8(&e.as_bytes()[..byte]).unwrap_or("");
         LoadError {
             loc: Some(loc_in(valid, byte)),
-            // Text formats are XML so far; a second text format would make
-            // this a generic "not text" kind.
-            ..LoadError::whole_file(
-                path.to_path_buf(),
-                ErrorKind::NotXml,
-                "not UTF-8 text".into(),
-            )
+            ..LoadError::whole_file(path.to_path_buf(), kind, "not UTF-8 text".into())
         }
     })
 }

@@ -263,7 +263,7 @@ fn load_picks_the_loader_by_extension_and_names_unknown_ones() {
     )
     .unwrap();
     assert!(candela_scene::load(&upper, &LoadOptions::default()).is_ok());
-    for (name, shown) in [("scene.obj", "\".obj\""), ("scene", "no extension")] {
+    for (name, shown) in [("scene.xyz", "\".xyz\""), ("scene", "no extension")] {
         let path = dir.join(name);
         std::fs::write(&path, "anything").unwrap();
         let err = candela_scene::load(&path, &LoadOptions::default()).unwrap_err();
