@@ -153,6 +153,7 @@ def render(
     # Every setting resolved here, once (defaults < the scene's suggestions
     # < the caller's), so that every unit renders the same settings.
     settings = _scene(path, strict).settings(**settings)
+    settings.pop("cell")  # each unit is given its own
     width, height, spp = settings["width"], settings["height"], settings["spp"]
     units = plan(width, height, spp, tiles, passes)
     fn = unit_fn or render_unit
