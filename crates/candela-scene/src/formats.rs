@@ -19,11 +19,18 @@ pub(crate) struct Format {
 }
 
 /// Every format, in the order they are listed in messages.
-pub(crate) const FORMATS: &[Format] = &[Format {
-    name: "COLLADA",
-    extensions: &["dae"],
-    load: crate::collada::load_file,
-}];
+pub(crate) const FORMATS: &[Format] = &[
+    Format {
+        name: "COLLADA",
+        extensions: &["dae"],
+        load: crate::collada::load_file,
+    },
+    Format {
+        name: "glTF",
+        extensions: &["gltf", "glb"],
+        load: crate::gltf::load_file,
+    },
+];
 
 /// The format whose extensions include `path`'s (case-insensitive), or an
 /// [`ErrorKind::UnknownFormat`] error naming it and the supported ones.
