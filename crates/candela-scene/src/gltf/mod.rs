@@ -116,6 +116,7 @@ pub(crate) fn load_bytes(
                 format!("not a glTF JSON document: {e}"),
             )
         })?;
+    check_position_indices(&ctx, &root)?;
     let doc = gltf::Document::from_json(root).map_err(|e| validation_error(&ctx, e))?;
     report_unsupported(&ctx, &doc)?;
     let buffers = buffers::read_all(&ctx, &doc, bin)?;
@@ -129,6 +130,31 @@ pub(crate) fn load_bytes(
         report: ctx.warnings.into_inner().finish(),
         hints,
     })
+}
+
+/// Refuses a `POSITION` index past the accessors before the `gltf` crate's
+/// validation, which indexes the accessors with it unchecked (and panics).
+fn check_position_indices(ctx: &Ctx, root: &gltf::json::Root) -> Result<(), LoadError> {
+    use gltf::json::validation::Checked;
+    for (i, mesh) in root.meshes.iter().enumerate() {
+        for (j, prim) in mesh.primitives.iter().enumerate() {
+            let pos = prim
+                .attributes
+                .get(&Checked::Valid(gltf::Semantic::Positions));
+            if let Some(index) = pos.filter(|a| a.value() >= root.accessors.len()) {
+                return Err(ctx.err(
+                    format!("/meshes/{i}/primitives/{j}/attributes/POSITION"),
+                    ErrorKind::IndexOutOfRange,
+                    format!(
+                        "accessor {} does not exist ({} accessors)",
+                        index.value(),
+                        root.accessors.len()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Names every extension and feature the loader does not draw, once.
