@@ -143,7 +143,7 @@ fn punctual_lights_are_divided_by_683_lumens_per_watt() {
         lights.push(json!({"type": "directional", "intensity": 1366.0}));
         lights.push(json!({"type": "spot", "intensity": 68.3, "spot": {"innerConeAngle": 0.1, "outerConeAngle": 0.5}}));
         let nodes = d["nodes"].as_array_mut().unwrap();
-        nodes.push(json!({"extensions": {"KHR_lights_punctual": {"light": 1}}, "rotation": [-0.7071068, 0.0, 0.0, 0.7071068]}));
+        nodes.push(json!({"extensions": {"KHR_lights_punctual": {"light": 1}}, "rotation": [-std::f32::consts::FRAC_1_SQRT_2, 0.0, 0.0, std::f32::consts::FRAC_1_SQRT_2]}));
         nodes.push(json!({"extensions": {"KHR_lights_punctual": {"light": 2}}, "translation": [1.0, 2.0, 3.0]}));
         d["scenes"][0]["nodes"] = json!([0, 1, 2, 3, 4, 5]);
     });

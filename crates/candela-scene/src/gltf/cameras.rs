@@ -19,7 +19,8 @@ pub(super) fn read_camera(
 ) -> Result<CameraDesc, LoadError> {
     let at = format!("/cameras/{}", cam.index());
     let det = Mat3::from_mat4(m).determinant();
-    if !(det.abs() > 1e-12) {
+    // NaN fails the comparison: singular.
+    if det.abs() <= 1e-12 || det.is_nan() {
         return Err(ctx.err(
             format!("/nodes/{}", node.index()),
             ErrorKind::DegenerateCamera,

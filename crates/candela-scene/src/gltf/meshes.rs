@@ -56,11 +56,11 @@ pub(super) fn read_primitive(
                     format!("index {bad} is past the {n} vertices of POSITION"),
                 ));
             }
-            triangles_of(ctx, &at, &idx, |i| i)?
+            triangles_of(ctx, &at, &idx)?
         }
         None => {
             let all: Vec<u32> = (0..n as u32).collect();
-            triangles_of(ctx, &at, &all, |i| i)?
+            triangles_of(ctx, &at, &all)?
         }
     };
     let attribute = |sem: &Semantic| -> Result<Option<gltf::Accessor>, LoadError> {
@@ -120,21 +120,13 @@ pub(super) fn read_primitive(
 
 /// Groups an index list into triangles (a count not divisible by three is a
 /// [`ErrorKind::CountMismatch`]).
-fn triangles_of(
-    ctx: &Ctx,
-    at: &str,
-    idx: &[u32],
-    map: impl Fn(u32) -> u32,
-) -> Result<Vec<[u32; 3]>, LoadError> {
-    if idx.len() % 3 != 0 {
+fn triangles_of(ctx: &Ctx, at: &str, idx: &[u32]) -> Result<Vec<[u32; 3]>, LoadError> {
+    if !idx.len().is_multiple_of(3) {
         return Err(ctx.err(
             at.to_string(),
             ErrorKind::CountMismatch,
             format!("{} indices do not make whole triangles", idx.len()),
         ));
     }
-    Ok(idx
-        .chunks_exact(3)
-        .map(|t| [map(t[0]), map(t[1]), map(t[2])])
-        .collect())
+    Ok(idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect())
 }

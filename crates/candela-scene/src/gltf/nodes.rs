@@ -112,7 +112,7 @@ fn visit(ctx: &Ctx, walk: &mut Walk, node: &gltf::Node, m: Mat4) -> Result<(), L
     }
     if let Some(mesh) = node.mesh() {
         let det = Mat3::from_mat4(m).determinant();
-        if !(det.abs() > 1e-20) {
+        if det.abs() <= 1e-20 || det.is_nan() {
             ctx.warn(
                 "zero scale",
                 "a node with a singular transform is not drawn",

@@ -70,11 +70,11 @@ pub fn gltf_text(patch: impl FnOnce(&mut Value)) -> Vec<u8> {
 /// A `.glb` of `doc` with `bin` as its BIN chunk.
 pub fn glb_of(doc: &Value, bin: &[u8]) -> Vec<u8> {
     let mut json = serde_json::to_vec(doc).expect("json");
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();
