@@ -35,6 +35,11 @@ pub(crate) const FORMATS: &[Format] = &[
         extensions: &["ply"],
         load: crate::ply::load_file,
     },
+    Format {
+        name: "glTF",
+        extensions: &["gltf", "glb"],
+        load: crate::gltf::load_file,
+    },
 ];
 
 /// The format whose extensions include `path`'s (case-insensitive), or an

@@ -14,6 +14,7 @@ mod collada;
 pub mod desc;
 mod error;
 mod formats;
+mod gltf;
 mod hints;
 mod lamps;
 mod obj;

@@ -14,6 +14,7 @@
 
 mod builder;
 mod cameras;
+pub(crate) use cameras::xfov_from_yfov;
 mod geometry;
 mod lights;
 mod materials;

@@ -80,6 +80,10 @@ pub struct TextureRef {
     pub color_space: ColorSpace,
     /// Multiplies every (linear) value read from the image.
     pub scale: f32,
+    /// For a one-value slot (roughness, metalness, opacity): the image
+    /// channel holding it (0 R, 1 G, 2 B, 3 A), as glTF packs roughness in G
+    /// and metalness in B of one image. `None`: the renderer's default.
+    pub channel: Option<u8>,
 }
 
 impl TextureRef {
@@ -89,6 +93,7 @@ impl TextureRef {
             path: path.into(),
             color_space,
             scale: 1.0,
+            channel: None,
         }
     }
 }

@@ -1,0 +1,132 @@
+//! Primitives to meshes: each glTF primitive (its own material) becomes one
+//! [`MeshDesc`] in the mesh's own space, read once however many nodes use
+//! it. glTF vertices carry all their attributes, so the per-attribute index
+//! arrays of [`MeshDesc`] are the triangle indices again.
+
+use super::accessors::{self, Buffers};
+use super::Ctx;
+use crate::desc::MeshDesc;
+use crate::error::{ErrorKind, LoadError};
+use gltf::mesh::{Mode, Semantic};
+
+/// Reads primitive `prim` of mesh `mesh`; `None` (after a warning) for a
+/// primitive that draws no triangles. `material` is the scene's index of
+/// its material.
+pub(super) fn read_primitive(
+    ctx: &Ctx,
+    buffers: &Buffers,
+    mesh: &gltf::Mesh,
+    prim: &gltf::Primitive,
+    material: usize,
+) -> Result<Option<MeshDesc>, LoadError> {
+    let at = format!("/meshes/{}/primitives/{}", mesh.index(), prim.index());
+    if prim.mode() != Mode::Triangles {
+        ctx.warn(
+            &format!("primitive mode {:?}", prim.mode()),
+            "only TRIANGLES primitives are drawn; ignored",
+        )?;
+        return Ok(None);
+    }
+    if prim.morph_targets().next().is_some() {
+        ctx.warn("morph targets", "not supported; the base shape is drawn")?;
+    }
+    let Some(pos_acc) = prim.get(&Semantic::Positions) else {
+        return Err(ctx.err(
+            format!("{at}/attributes"),
+            ErrorKind::MissingElement,
+            "primitive has no POSITION attribute".into(),
+        ));
+    };
+    let positions = accessors::vec3(ctx, buffers, &pos_acc)?;
+    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(ctx.err(
+            format!("/accessors/{}", pos_acc.index()),
+            ErrorKind::NonFinite,
+            format!("position {i} is {}", positions[i]),
+        ));
+    }
+    let n = positions.len();
+    let triangles = match prim.indices() {
+        Some(acc) => {
+            let idx = accessors::indices(ctx, buffers, &acc)?;
+            if let Some(&bad) = idx.iter().find(|&&i| i as usize >= n) {
+                return Err(ctx.err(
+                    format!("/accessors/{}", acc.index()),
+                    ErrorKind::IndexOutOfRange,
+                    format!("index {bad} is past the {n} vertices of POSITION"),
+                ));
+            }
+            triangles_of(ctx, &at, &idx)?
+        }
+        None => {
+            let all: Vec<u32> = (0..n as u32).collect();
+            triangles_of(ctx, &at, &all)?
+        }
+    };
+    let attribute = |sem: &Semantic| -> Result<Option<gltf::Accessor>, LoadError> {
+        let Some(acc) = prim.get(sem) else {
+            return Ok(None);
+        };
+        if acc.count() != n {
+            return Err(ctx.err(
+                format!("/accessors/{}/count", acc.index()),
+                ErrorKind::CountMismatch,
+                format!("{sem:?} has {} elements, POSITION has {n}", acc.count()),
+            ));
+        }
+        Ok(Some(acc))
+    };
+    let mut desc = MeshDesc {
+        name: mesh.name().unwrap_or("mesh").to_string(),
+        material,
+        ..MeshDesc::default()
+    };
+    if let Some(acc) = attribute(&Semantic::Normals)? {
+        let normals = accessors::vec3(ctx, buffers, &acc)?;
+        // Unit length per the spec; exporters round, and a zero normal
+        // falls back to the face's own.
+        desc.normals = normals
+            .into_iter()
+            .map(|v| v.try_normalize().unwrap_or(glam::Vec3::ZERO))
+            .collect();
+        desc.normal_indices = triangles.clone();
+    }
+    if let Some(acc) = attribute(&Semantic::TexCoords(0))? {
+        desc.uvs = accessors::vec2(ctx, buffers, &acc)?;
+        desc.uv_indices = triangles.clone();
+    }
+    if prim.get(&Semantic::Tangents).is_some() {
+        ctx.warn(
+            "TANGENT",
+            "tangents are not stored; a normal map's tangent frame follows the UVs",
+        )?;
+    }
+    for (sem, _) in prim.attributes() {
+        if matches!(sem, Semantic::Joints(_) | Semantic::Weights(_)) {
+            ctx.warn(
+                "skinning attributes",
+                "skins are not supported; the bind pose is drawn",
+            )?;
+        } else if matches!(sem, Semantic::TexCoords(k) if k > 0) {
+            ctx.warn("TEXCOORD_1+", "only TEXCOORD_0 is read")?;
+        } else if matches!(sem, Semantic::Colors(_)) {
+            ctx.warn("COLOR_0", "vertex colours are not supported; ignored")?;
+        }
+    }
+    desc.positions = positions;
+    desc.triangles = triangles;
+    Ok(Some(desc))
+}
+
+/// Groups an index list into triangles (a count not divisible by three is a
+/// [`ErrorKind::CountMismatch`]).
+fn triangles_of(ctx: &Ctx, at: &str, idx: &[u32]) -> Result<Vec<[u32; 3]>, LoadError> {
+    if !idx.len().is_multiple_of(3) {
+        return Err(ctx.err(
+            at.to_string(),
+            ErrorKind::CountMismatch,
+            format!("{} indices do not make whole triangles", idx.len()),
+        ));
+    }
+    Ok(idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect())
+}

@@ -1,0 +1,97 @@
+//! Texture references. [`crate::TextureRef`] names an image file, so an
+//! image stored inside the glTF (a `data:` URI or a `.glb` buffer view) is
+//! written once to a content-addressed file in the system's temporary
+//! directory (`candela-gltf-images/<hash>.<ext>`) and referenced from there;
+//! external images are referenced beside the scene as they are.
+
+use super::accessors::Buffers;
+use super::buffers::{file_path, read_uri};
+use super::Ctx;
+use crate::desc::{ColorSpace, TextureRef};
+use crate::error::{ErrorKind, LoadError};
+use std::path::PathBuf;
+
+/// The file of texture `tex`, read in `space`; `None` (after a warning) for
+/// one the loader cannot reference.
+pub(super) fn texture_ref(
+    ctx: &Ctx,
+    buffers: &Buffers,
+    tex: &gltf::Texture,
+    tex_coord: u32,
+    space: ColorSpace,
+) -> Result<Option<TextureRef>, LoadError> {
+    if tex_coord != 0 {
+        ctx.warn("TEXCOORD_1+", "only TEXCOORD_0 is read")?;
+    }
+    let image = tex.source();
+    let at = format!("/images/{}", image.index());
+    let path = match image.source() {
+        gltf::image::Source::Uri { uri, mime_type } if uri.starts_with("data:") => {
+            let bytes = read_uri(ctx, &at, uri)?;
+            let mime = mime_type.or_else(|| uri[5..].split(';').next());
+            cache_file(ctx, &at, &bytes, mime)?
+        }
+        gltf::image::Source::Uri { uri, .. } => file_path(ctx, uri),
+        gltf::image::Source::View { view, mime_type } => {
+            let buffer = &buffers[view.buffer().index()];
+            let bytes = view
+                .offset()
+                .checked_add(view.length())
+                .and_then(|end| buffer.get(view.offset()..end))
+                .ok_or_else(|| {
+                    ctx.err(
+                        format!("/bufferViews/{}", view.index()),
+                        ErrorKind::IndexOutOfRange,
+                        format!(
+                            "image bytes run past the end of buffer {}",
+                            view.buffer().index()
+                        ),
+                    )
+                })?;
+            cache_file(ctx, &at, bytes, Some(mime_type))?
+        }
+    };
+    Ok(Some(TextureRef::new(path, space)))
+}
+
+/// Writes embedded image bytes to the temporary cache (unless a file of
+/// that content is there already) and returns its path.
+fn cache_file(ctx: &Ctx, at: &str, bytes: &[u8], mime: Option<&str>) -> Result<PathBuf, LoadError> {
+    let ext = match mime {
+        Some("image/png") => "png",
+        Some("image/jpeg") => "jpg",
+        Some(other) => {
+            ctx.warn(
+                "image type",
+                &format!("embedded {other} images cannot be read by the renderer"),
+            )?;
+            "bin"
+        }
+        None => "png",
+    };
+    let dir = std::env::temp_dir().join("candela-gltf-images");
+    let path = dir.join(format!("{:016x}-{}.{ext}", fnv1a(bytes), bytes.len()));
+    let same = std::fs::metadata(&path).is_ok_and(|m| m.len() == bytes.len() as u64);
+    if !same {
+        let io = |e: std::io::Error| {
+            ctx.err(
+                at.to_string(),
+                ErrorKind::Io,
+                format!("cannot write the embedded image to {}: {e}", path.display()),
+            )
+        };
+        std::fs::create_dir_all(&dir).map_err(io)?;
+        // Write beside and rename, so a concurrent load never sees half a file.
+        let tmp = dir.join(format!("{:016x}.{}.part", fnv1a(bytes), std::process::id()));
+        std::fs::write(&tmp, bytes).map_err(io)?;
+        std::fs::rename(&tmp, &path).map_err(io)?;
+    }
+    Ok(path)
+}
+
+/// 64-bit FNV-1a: names cache files by content.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}

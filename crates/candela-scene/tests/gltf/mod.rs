@@ -1,0 +1,106 @@
+//! A small valid glTF document for the glTF tests to start from and
+//! mutate: two instances of a one-triangle mesh, a camera and a point light,
+//! written as `.gltf` (base64 buffer) or `.glb` (BIN chunk).
+
+use base64::Engine;
+use serde_json::{json, Value};
+use std::path::PathBuf;
+
+/// Three positions (0,0,0), (1,0,0), (0,1,0), then u16 indices 0 1 2 and
+/// two bytes of padding.
+pub fn buffer() -> Vec<u8> {
+    let mut b = Vec::new();
+    for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    for i in [0u16, 1, 2, 0] {
+        b.extend_from_slice(&i.to_le_bytes());
+    }
+    b
+}
+
+/// The document, its buffer given by `uri` (none for a `.glb`).
+pub fn document(uri: Option<String>) -> Value {
+    let mut buffer = json!({"byteLength": 44});
+    if let Some(uri) = uri {
+        buffer["uri"] = json!(uri);
+    }
+    json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 2, 3]}],
+        "nodes": [
+            {"mesh": 0},
+            {"mesh": 0, "translation": [2.0, 0.0, 0.0]},
+            {"camera": 0, "translation": [0.0, 0.0, 5.0]},
+            {"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0.0, 3.0, 0.0]}
+        ],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.2, 0.2, 1.0], "metallicFactor": 0.0}}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "aspectRatio": 1.5}}],
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 683.0, "color": [1.0, 0.5, 0.25]}]}},
+        "buffers": [buffer],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 36},
+            {"buffer": 0, "byteOffset": 36, "byteLength": 6}
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 0.0]},
+            {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}
+        ]
+    })
+}
+
+/// A `data:` URI of `bytes`.
+pub fn data_uri(bytes: &[u8]) -> String {
+    format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(bytes)
+    )
+}
+
+/// The `.gltf` text of the document with an embedded buffer.
+pub fn gltf_text(patch: impl FnOnce(&mut Value)) -> Vec<u8> {
+    let mut doc = document(Some(data_uri(&buffer())));
+    patch(&mut doc);
+    serde_json::to_vec_pretty(&doc).expect("json")
+}
+
+/// A `.glb` of `doc` with `bin` as its BIN chunk.
+pub fn glb_of(doc: &Value, bin: &[u8]) -> Vec<u8> {
+    let mut json = serde_json::to_vec(doc).expect("json");
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let mut bin = bin.to_vec();
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    out
+}
+
+/// The valid `.glb`.
+pub fn glb() -> Vec<u8> {
+    glb_of(&document(None), &buffer())
+}
+
+/// Writes `bytes` to a fresh file `name` in a per-process temporary folder.
+pub fn write(name: &str, bytes: &[u8]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("candela-gltf-tests-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).expect("write");
+    path
+}

@@ -1,0 +1,318 @@
+//! glTF loading: the Khronos sample files, instancing, cameras, light units,
+//! materials, `.glb` against `.gltf`.
+
+mod gltf;
+
+use candela_scene::{load, BsdfDesc, LightKind, LoadOptions, Loaded, Projection, TextureSlot};
+use glam::{Mat4, Vec3};
+use gltf::{glb, gltf_text, write};
+use serde_json::json;
+use std::path::PathBuf;
+
+fn shared(name: &str) -> PathBuf {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/scenes/formats/gltf")
+        .join(name)
+        .join(format!("{name}.gltf"));
+    assert!(path.exists(), "shared sample {} is missing", path.display());
+    path
+}
+
+fn load_ok(path: &std::path::Path) -> Loaded {
+    load(path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    (a - b).abs().max_element() < 1e-5
+}
+
+#[test]
+fn khronos_box_loads_with_its_counts_and_bounds() {
+    let l = load_ok(&shared("Box"));
+    let s = &l.scene;
+    // Box.gltf: 24 vertices, 36 indices, one red diffuse material, no camera.
+    assert_eq!((s.meshes.len(), s.instances.len()), (1, 1));
+    assert_eq!(s.meshes[0].positions.len(), 24);
+    assert_eq!(s.triangle_count(), 12);
+    assert_eq!(s.meshes[0].normals.len(), 24);
+    let (lo, hi) = s.bounds().expect("bounds");
+    assert!(
+        close(lo, Vec3::splat(-0.5)) && close(hi, Vec3::splat(0.5)),
+        "{lo} {hi}"
+    );
+    assert!(
+        matches!(s.materials[0].bsdf, BsdfDesc::Diffuse { albedo } if close(albedo, Vec3::new(0.8, 0.0, 0.0)))
+    );
+    assert!(s.cameras.is_empty() && !l.hints.file_camera);
+}
+
+#[test]
+fn khronos_box_textured_embeds_its_png_where_the_renderer_reads_it() {
+    let l = load_ok(&shared("BoxTextured"));
+    let s = &l.scene;
+    assert_eq!(s.triangle_count(), 12);
+    assert_eq!(s.meshes[0].uvs.len(), 24);
+    assert_eq!(s.meshes[0].uv_indices, s.meshes[0].triangles);
+    let tex = s.materials[0]
+        .textures
+        .get(TextureSlot::Color)
+        .expect("colour texture");
+    let bytes = std::fs::read(&tex.path).expect("cached image");
+    assert!(bytes.starts_with(b"\x89PNG"), "{}", tex.path.display());
+    assert_eq!(tex.path.extension().and_then(|e| e.to_str()), Some("png"));
+}
+
+#[test]
+fn khronos_simple_meshes_is_one_mesh_drawn_twice() {
+    let s = load_ok(&shared("SimpleMeshes")).scene;
+    assert_eq!((s.meshes.len(), s.instances.len()), (1, 2));
+    assert_eq!((s.triangle_count(), s.instanced_triangle_count()), (1, 2));
+    assert_eq!(
+        s.instances[1].world_from_object,
+        Mat4::from_translation(Vec3::X)
+    );
+    let (lo, hi) = s.bounds().expect("bounds");
+    assert!(
+        close(lo, Vec3::ZERO) && close(hi, Vec3::new(2.0, 1.0, 0.0)),
+        "{lo} {hi}"
+    );
+}
+
+#[test]
+fn glb_and_gltf_of_one_document_load_the_same() {
+    let a = load_ok(&write("same.gltf", &gltf_text(|_| {}))).scene;
+    let b = load_ok(&write("same.glb", &glb())).scene;
+    assert_eq!(a.meshes, b.meshes);
+    assert_eq!(a.instances, b.instances);
+    assert_eq!(a.cameras.len(), b.cameras.len());
+    assert_eq!(a.lights, b.lights);
+}
+
+#[test]
+fn a_perspective_camera_is_the_file_camera_with_its_fields_of_view() {
+    let l = load_ok(&write("camera.gltf", &gltf_text(|_| {})));
+    assert!(l.hints.file_camera);
+    let cam = &l.scene.cameras[0];
+    let Projection::Perspective { xfov_deg, yfov_deg } = cam.projection else {
+        panic!("{:?}", cam.projection)
+    };
+    assert!((yfov_deg - 0.8f32.to_degrees()).abs() < 1e-4);
+    // tan(x/2) = aspect * tan(y/2).
+    let expect_x = 2.0 * (1.5 * (0.4f32).tan()).atan().to_degrees();
+    assert!(
+        (xfov_deg - expect_x).abs() < 1e-3,
+        "{xfov_deg} vs {expect_x}"
+    );
+    assert_eq!(
+        cam.world_from_camera,
+        Mat4::from_translation(Vec3::new(0.0, 0.0, 5.0))
+    );
+}
+
+#[test]
+fn cameras_are_kept_in_node_order_and_orthographic_keeps_its_width() {
+    let text = gltf_text(|d| {
+        d["cameras"].as_array_mut().unwrap().push(json!(
+            {"type": "orthographic", "orthographic": {"xmag": 3.0, "ymag": 2.0, "znear": 0.1, "zfar": 50.0}}
+        ));
+        // Node 4 (the orthographic camera) is listed first in the scene.
+        d["nodes"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"camera": 1}));
+        d["scenes"][0]["nodes"] = json!([4, 0, 1, 2, 3]);
+    });
+    let s = load_ok(&write("ortho.gltf", &text)).scene;
+    assert_eq!(s.cameras.len(), 2);
+    assert!(matches!(
+        s.cameras[0].projection,
+        Projection::Perspective { .. }
+    ));
+    assert_eq!(
+        s.cameras[1].projection,
+        Projection::Orthographic { width: 6.0 }
+    );
+}
+
+#[test]
+fn punctual_lights_are_divided_by_683_lumens_per_watt() {
+    let text = gltf_text(|d| {
+        let lights = d["extensions"]["KHR_lights_punctual"]["lights"]
+            .as_array_mut()
+            .unwrap();
+        lights.push(json!({"type": "directional", "intensity": 1366.0}));
+        lights.push(json!({"type": "spot", "intensity": 68.3, "spot": {"innerConeAngle": 0.1, "outerConeAngle": 0.5}}));
+        let nodes = d["nodes"].as_array_mut().unwrap();
+        nodes.push(json!({"extensions": {"KHR_lights_punctual": {"light": 1}}, "rotation": [-std::f32::consts::FRAC_1_SQRT_2, 0.0, 0.0, std::f32::consts::FRAC_1_SQRT_2]}));
+        nodes.push(json!({"extensions": {"KHR_lights_punctual": {"light": 2}}, "translation": [1.0, 2.0, 3.0]}));
+        d["scenes"][0]["nodes"] = json!([0, 1, 2, 3, 4, 5]);
+    });
+    let l = load_ok(&write("lights.gltf", &text));
+    let lights = &l.scene.lights;
+    assert_eq!(lights.len(), 3);
+    // 683 cd of colour (1, 0.5, 0.25) = (1, 0.5, 0.25) W/sr.
+    assert!(
+        matches!(lights[0].kind, LightKind::Point { position, intensity }
+        if close(position, Vec3::new(0.0, 3.0, 0.0)) && close(intensity, Vec3::new(1.0, 0.5, 0.25)))
+    );
+    // 1366 lux = 2 W/m², travelling down local -Z turned by -90° about X: straight down.
+    assert!(
+        matches!(lights[1].kind, LightKind::Directional { direction, radiance }
+        if close(direction, Vec3::NEG_Y) && close(radiance, Vec3::splat(2.0))),
+        "{:?}",
+        lights[1]
+    );
+    let LightKind::Spot {
+        position,
+        direction,
+        intensity,
+        cone_angle_deg,
+        ..
+    } = lights[2].kind
+    else {
+        panic!("{:?}", lights[2])
+    };
+    assert!(close(position, Vec3::new(1.0, 2.0, 3.0)) && close(direction, Vec3::NEG_Z));
+    assert!(close(intensity, Vec3::splat(0.1)));
+    assert!((cone_angle_deg - 2.0 * 0.5f32.to_degrees()).abs() < 1e-4);
+    assert!(l.report.mentions("spot cone"), "{}", l.report);
+}
+
+#[test]
+fn metallic_roughness_materials_map_onto_the_bsdfs() {
+    let text = gltf_text(|d| {
+        d["materials"] = json!([
+            {"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.3, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.5}},
+        ]);
+    });
+    let s = load_ok(&write("metal.gltf", &text)).scene;
+    let BsdfDesc::Microfacet { alpha, eta, k } = s.materials[0].bsdf else {
+        panic!("{:?}", s.materials[0].bsdf)
+    };
+    assert!((alpha - 0.25).abs() < 1e-6);
+    // Normal-incidence Fresnel of a conductor: ((η-1)² + k²) / ((η+1)² + k²).
+    let f0 = ((eta - Vec3::ONE) * (eta - Vec3::ONE) + k * k)
+        / ((eta + Vec3::ONE) * (eta + Vec3::ONE) + k * k);
+    assert!(close(f0, Vec3::new(0.9, 0.6, 0.3)), "{f0}");
+}
+
+#[test]
+fn emission_transmission_and_texture_slots() {
+    let png = gltf::data_uri(b"\x89PNG not really");
+    let text = gltf_text(|d| {
+        d["extensionsUsed"] = json!([
+            "KHR_lights_punctual",
+            "KHR_materials_emissive_strength",
+            "KHR_materials_transmission",
+            "KHR_materials_ior"
+        ]);
+        d["images"] = json!([{"uri": png.replace("application/octet-stream", "image/png")}, {"uri": "rough metal.png"}]);
+        d["textures"] = json!([{"source": 0}, {"source": 1}]);
+        d["materials"] = json!([
+            {"emissiveFactor": [1.0, 1.0, 1.0], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 5.0}},
+             "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 1},
+                                      "metallicFactor": 0.0, "roughnessFactor": 0.7},
+             "normalTexture": {"index": 1, "scale": 0.5}, "alphaMode": "MASK"},
+            {"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 1.33}},
+             "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.0}}
+        ]);
+        let mut second = d["meshes"][0]["primitives"][0].clone();
+        second["material"] = json!(1);
+        d["meshes"][0]["primitives"]
+            .as_array_mut()
+            .unwrap()
+            .push(second);
+    });
+    let path = write("slots.gltf", &text);
+    let l = load_ok(&path);
+    let s = &l.scene;
+    // One glTF mesh of two primitives used by two nodes: two meshes, four instances.
+    assert_eq!((s.meshes.len(), s.instances.len()), (2, 4));
+    let m = &s.materials[0];
+    assert_eq!(m.emission, Some(Vec3::splat(5.0)));
+    let t = &m.textures;
+    let rough = t.get(TextureSlot::Roughness).expect("roughness");
+    let metal = t.get(TextureSlot::Metalness).expect("metalness");
+    assert_eq!((rough.channel, metal.channel), (Some(1), Some(2)));
+    assert_eq!(rough.path, path.parent().unwrap().join("rough metal.png"));
+    assert!((rough.scale - 0.7).abs() < 1e-6 && metal.scale == 0.0);
+    assert_eq!(t.get(TextureSlot::Normal).map(|n| n.scale), Some(0.5));
+    assert_eq!(t.get(TextureSlot::Opacity).and_then(|o| o.channel), Some(3));
+    assert!(t.get(TextureSlot::Color).is_some());
+    assert!(l.report.mentions("alphaCutoff"));
+    assert_eq!(
+        s.materials[1].bsdf,
+        BsdfDesc::Glass {
+            reflectance: Vec3::ONE,
+            transmittance: Vec3::ONE,
+            roughness: 0.0,
+            ior: 1.33
+        }
+    );
+}
+
+#[test]
+fn unsupported_features_are_reported_once_by_name() {
+    let text = gltf_text(|d| {
+        d["extensionsUsed"] = json!([
+            "KHR_lights_punctual",
+            "KHR_draco_mesh_compression",
+            "KHR_texture_basisu"
+        ]);
+        let mut lines = d["meshes"][0]["primitives"][0].clone();
+        lines["mode"] = json!(1);
+        d["meshes"] = json!([{"primitives": [lines.clone(), lines]}]);
+        d["animations"] = json!([]);
+    });
+    let l = load_ok(&write("unsupported.gltf", &text));
+    let r = &l.report;
+    assert!(
+        r.mentions("KHR_draco_mesh_compression") && r.mentions("KHR_texture_basisu"),
+        "{r}"
+    );
+    let mode: Vec<_> = r
+        .warnings
+        .iter()
+        .filter(|w| w.element.contains("mode"))
+        .collect();
+    assert_eq!(mode.len(), 1, "{r}");
+    assert_eq!(mode[0].count, 2);
+    assert!(l.scene.meshes.is_empty());
+    let strict = load(
+        &write("unsupported-strict.gltf", &text),
+        &LoadOptions {
+            strict: true,
+            ..Default::default()
+        },
+    );
+    assert_eq!(
+        strict.expect_err("strict").kind,
+        candela_scene::ErrorKind::Unsupported
+    );
+}
+
+#[test]
+fn sparse_accessors_overwrite_their_base() {
+    // Move vertex 2 to (0, 2, 0) with a sparse entry stored after the indices.
+    let mut buf = gltf::buffer();
+    buf.extend_from_slice(&2u16.to_le_bytes());
+    buf.extend_from_slice(&[0, 0]);
+    for v in [0.0f32, 2.0, 0.0] {
+        buf.extend_from_slice(&v.to_le_bytes());
+    }
+    let text = gltf_text(|d| {
+        d["buffers"] = json!([{"uri": gltf::data_uri(&buf), "byteLength": buf.len()}]);
+        d["bufferViews"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"buffer": 0, "byteOffset": 44, "byteLength": 2}));
+        d["bufferViews"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"buffer": 0, "byteOffset": 48, "byteLength": 12}));
+        d["accessors"][0]["sparse"] = json!({"count": 1,
+            "indices": {"bufferView": 2, "componentType": 5123}, "values": {"bufferView": 3}});
+    });
+    let s = load_ok(&write("sparse.gltf", &text)).scene;
+    assert_eq!(s.meshes[0].positions[2], Vec3::new(0.0, 2.0, 0.0));
+}
