@@ -15,6 +15,7 @@
 mod builder;
 mod cameras;
 mod geometry;
+mod lenient;
 mod lights;
 mod materials;
 mod mesh;
