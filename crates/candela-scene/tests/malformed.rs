@@ -91,8 +91,14 @@ fn every_malformed_file_fails_with_its_kind_and_location() {
                 repaired += 1;
             }
             None => {
-                let lenient = load(&path, &LoadOptions::default()).map(|_| ()).unwrap_err();
-                assert_eq!((lenient.kind, lenient.loc), (err.kind, err.loc), "{lenient}");
+                let lenient = load(&path, &LoadOptions::default())
+                    .map(|_| ())
+                    .unwrap_err();
+                assert_eq!(
+                    (lenient.kind, lenient.loc),
+                    (err.kind, err.loc),
+                    "{lenient}"
+                );
             }
         }
         n += 1;
@@ -138,7 +144,12 @@ fn triangles(l: &Loaded, n: usize) {
 }
 
 fn red(l: &Loaded) -> &BsdfDesc {
-    &l.scene.materials.iter().find(|m| m.name == "red").unwrap().bsdf
+    &l.scene
+        .materials
+        .iter()
+        .find(|m| m.name == "red")
+        .unwrap()
+        .bsdf
 }
 
 const REPAIRS: &[Repair] = &[
@@ -231,8 +242,8 @@ const REPAIRS: &[Repair] = &[
 /// strict error's place and element, saying how it was repaired.
 fn check_repaired(path: &Path, repair: &Repair, strict_err: &candela_scene::LoadError) {
     let name = repair.file;
-    let loaded = load(path, &LoadOptions::default())
-        .unwrap_or_else(|e| panic!("{name}: not repaired: {e}"));
+    let loaded =
+        load(path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{name}: not repaired: {e}"));
     let w = match loaded.report.warnings.as_slice() {
         [w] => w,
         _ => panic!("{name}: expected one warning:\n{}", loaded.report),

@@ -2,9 +2,9 @@
 //! per primitive element) and CGL spheres.
 
 use super::builder::Builder;
+use super::lenient::cgl_technique;
 use super::numbers::float;
 use super::sources::SourceCache;
-use super::lenient::cgl_technique;
 use super::xml::{child, children, elements, require, Ctx, XNode};
 use super::{mesh, primitives};
 use crate::desc::SphereDesc;

@@ -56,8 +56,9 @@ fn cgl_bsdf(ctx: &Ctx, model: XNode) -> Result<Option<(BsdfDesc, Option<Vec3>)>,
     let color = |name: &str, default: Vec3| -> Result<Vec3, LoadError> {
         color_or(ctx, child(model, name), Color::Reflectance, default)
     };
-    let scalar =
-        |name: &str, default: f32| -> Result<f32, LoadError> { float_or(ctx, child(model, name), default) };
+    let scalar = |name: &str, default: f32| -> Result<f32, LoadError> {
+        float_or(ctx, child(model, name), default)
+    };
     let bsdf = match model.tag_name().name() {
         "emission" => {
             let radiance = lenient::color(ctx, require(ctx, model, "radiance")?, Color::Emitted)?;

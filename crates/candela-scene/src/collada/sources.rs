@@ -83,7 +83,10 @@ fn read_source(ctx: &Ctx, source: XNode, components: usize) -> Result<Source, Lo
         }
         ctx.repair(
             err,
-            &format!("the {} numbers present used (the accessor needs {needed})", data.len()),
+            &format!(
+                "the {} numbers present used (the accessor needs {needed})",
+                data.len()
+            ),
         )?;
     }
     if stride < components {
