@@ -3,6 +3,12 @@
 //! height. Rendering both would double the light, so an area light that
 //! coincides with an emissive mesh is dropped in favour of the mesh (which
 //! the camera can also see), and the report says so.
+//!
+//! Some files in the wild give the two different radiances. The CS184
+//! program light-samples the area light and only sees the mesh by chance
+//! hits, so its users see the scene lit at the area light's radiance: the
+//! lamp is still counted once, as the mesh, but emitting the area light's
+//! radiance, and the note names both values.
 
 use crate::desc::{LightKind, SceneDesc};
 use crate::report::Warning;
@@ -16,6 +22,8 @@ const TOLERANCE: f32 = 0.05;
 
 /// An emissive mesh summarised as one flat lamp.
 struct Lamp {
+    /// Index into [`SceneDesc::instances`].
+    instance: usize,
     name: String,
     area: f32,
     centroid: Vec3,
@@ -24,13 +32,15 @@ struct Lamp {
     radiance: Vec3,
 }
 
-/// Removes area lights that duplicate an emissive mesh and returns one note
-/// per removal.
+/// Removes area lights that duplicate an emissive mesh (same area, place
+/// and facing; the mesh takes the light's radiance if they differ) and
+/// returns one note per removal.
 pub(crate) fn merge_duplicate_lamps(scene: &mut SceneDesc) -> Vec<Warning> {
     let lamps: Vec<Lamp> = scene
         .instances
         .iter()
-        .filter_map(|inst| {
+        .enumerate()
+        .filter_map(|(instance, inst)| {
             let mesh = scene.meshes.get(inst.mesh)?;
             let material = inst.material.unwrap_or(mesh.material);
             let radiance = scene.materials.get(material)?.emission?;
@@ -56,6 +66,7 @@ pub(crate) fn merge_duplicate_lamps(scene: &mut SceneDesc) -> Vec<Warning> {
                 normal += tri_area * n;
             }
             (area > 0.0).then(|| Lamp {
+                instance,
                 name: mesh.name.clone(),
                 area,
                 centroid: centroid / area,
@@ -65,6 +76,7 @@ pub(crate) fn merge_duplicate_lamps(scene: &mut SceneDesc) -> Vec<Warning> {
         })
         .collect();
     let mut notes = Vec::new();
+    let mut reradiate = Vec::new();
     scene.lights.retain(|light| {
         let LightKind::Area {
             center,
@@ -82,27 +94,48 @@ pub(crate) fn merge_duplicate_lamps(scene: &mut SceneDesc) -> Vec<Warning> {
             close(lamp.area, area)
                 && (lamp.centroid - center).length() <= TOLERANCE * size
                 && lamp.normal.dot(normal.normalize_or_zero()) > 1.0 - TOLERANCE
-                && close(lamp.radiance.max_element(), radiance.max_element())
-                && (lamp.radiance - radiance).abs().max_element()
-                    <= TOLERANCE * radiance.max_element()
         });
-        match twin {
-            Some(lamp) => {
-                notes.push(Warning {
-                    loc: light.loc,
-                    element: "<area>".into(),
-                    message: format!(
-                        "area light '{}' describes the emissive mesh '{}' (same area, place and radiance): its light is counted once, as the mesh",
-                        light.name, lamp.name
-                    ),
-                    count: 1,
-                });
-                false
-            }
-            None => true,
-        }
+        let Some(lamp) = twin else {
+            return true;
+        };
+        let same = close(lamp.radiance.max_element(), radiance.max_element())
+            && (lamp.radiance - radiance).abs().max_element() <= TOLERANCE * radiance.max_element();
+        let message = if same {
+            format!(
+                "area light '{}' describes the emissive mesh '{}' (same area, place and radiance): its light is counted once, as the mesh",
+                light.name, lamp.name
+            )
+        } else {
+            reradiate.push((lamp.instance, radiance));
+            let (l, m) = (radiance, lamp.radiance);
+            format!(
+                "area light '{}' sits on the emissive mesh '{}' with radiance ({}, {}, {}) against the mesh's ({}, {}, {}): counted once, as the mesh at the area light's radiance (what the CS184 program renders)",
+                light.name, lamp.name, l.x, l.y, l.z, m.x, m.y, m.z
+            )
+        };
+        notes.push(Warning {
+            loc: light.loc,
+            element: "<area>".into(),
+            message,
+            count: 1,
+        });
+        false
     });
+    for (instance, radiance) in reradiate {
+        emit_from(scene, instance, radiance);
+    }
     notes
+}
+
+/// Gives one instance its own copy of its material, emitting `radiance`
+/// (other meshes sharing the material keep theirs).
+fn emit_from(scene: &mut SceneDesc, instance: usize, radiance: Vec3) {
+    let inst = &scene.instances[instance];
+    let current = inst.material.unwrap_or(scene.meshes[inst.mesh].material);
+    let mut material = scene.materials[current].clone();
+    material.emission = Some(radiance);
+    scene.materials.push(material);
+    scene.instances[instance].material = Some(scene.materials.len() - 1);
 }
 
 fn close(a: f32, b: f32) -> bool {
@@ -163,15 +196,33 @@ mod tests {
     }
 
     #[test]
-    fn a_different_lamp_is_kept() {
-        for (center, radiance) in [
-            (Vec3::new(0.5, 1.49, 0.0), 10.0), // elsewhere
-            (Vec3::new(0.0, 1.49, 0.0), 3.0),  // dimmer
-        ] {
-            let mut scene = scene_with(center, radiance);
-            assert!(merge_duplicate_lamps(&mut scene).is_empty());
-            assert_eq!(scene.lights.len(), 1);
-        }
+    fn a_lamp_elsewhere_is_kept() {
+        let mut scene = scene_with(Vec3::new(0.5, 1.49, 0.0), 10.0);
+        assert!(merge_duplicate_lamps(&mut scene).is_empty());
+        assert_eq!(scene.lights.len(), 1);
+    }
+
+    #[test]
+    fn a_dimmer_light_on_the_lamp_sets_its_radiance() {
+        let mut scene = scene_with(Vec3::new(0.0, 1.49, 0.0), 3.0);
+        let notes = merge_duplicate_lamps(&mut scene);
+        assert!(scene.lights.is_empty());
+        assert_eq!(notes.len(), 1);
+        assert!(
+            notes[0].message.contains("(3, 3, 3)"),
+            "{}",
+            notes[0].message
+        );
+        assert!(
+            notes[0].message.contains("(10, 10, 10)"),
+            "{}",
+            notes[0].message
+        );
+        let inst = &scene.instances[0];
+        let material = inst.material.unwrap_or(scene.meshes[inst.mesh].material);
+        assert_eq!(scene.materials[material].emission, Some(Vec3::splat(3.0)));
+        // The shared material itself is untouched.
+        assert_eq!(scene.materials[0].emission, Some(Vec3::splat(10.0)));
     }
 
     #[test]

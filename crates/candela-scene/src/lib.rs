@@ -34,11 +34,15 @@ use std::path::{Path, PathBuf};
 pub struct LoadOptions {
     /// Turn every warning (an ignored element or feature) into an
     /// [`ErrorKind::Unsupported`] error, for users who want to know that what
-    /// they render is exactly what the file says.
+    /// they render is exactly what the file says; and refuse, with the
+    /// error it is, every defect the default mode repairs (a matrix missing
+    /// its last row, a wrong `count`, an out-of-range colour, a `CMU462`
+    /// profile, ...; README, "Lenient loading").
     pub strict: bool,
     /// Keep a CGL area light that duplicates an emissive mesh (the CS184
     /// Cornell-box lamp) instead of counting that lamp once. Only for tools
     /// that want the file exactly as written: rendering both doubles the light.
+    /// (When the two radiances differ, the merged lamp takes the area light's.)
     pub keep_duplicate_lamps: bool,
 }
 

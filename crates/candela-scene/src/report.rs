@@ -113,19 +113,45 @@ impl Collector {
                 message: format!("{message} (strict mode)"),
             });
         }
+        let repeat = self.seen.contains_key(&(element.clone(), message.clone()));
+        let loc = if repeat { SourceLoc::default() } else { loc() };
+        self.record(element, message, loc);
+        Ok(())
+    }
+
+    /// Whether warnings are errors (and repairs refused).
+    pub(crate) fn strict(&self) -> bool {
+        self.strict
+    }
+
+    /// A defect the loader can repair: in strict mode `err` itself (the
+    /// error a strict load has always given); otherwise a warning at the
+    /// error's place, naming its element, saying what was wrong and how it
+    /// was repaired (`fix`).
+    pub(crate) fn repair(&mut self, err: LoadError, fix: &str) -> Result<(), LoadError> {
+        if self.strict {
+            return Err(err);
+        }
+        let loc = err.loc.unwrap_or_default();
+        let message = format!("{}; repaired: {fix}", err.message);
+        self.record(err.element, message, loc);
+        Ok(())
+    }
+
+    /// Adds a warning, or counts a repeat of one already recorded.
+    fn record(&mut self, element: String, message: String, loc: SourceLoc) {
         let key = (element, message);
         if let Some(&i) = self.seen.get(&key) {
             self.report.warnings[i].count += 1;
-            return Ok(());
+            return;
         }
         self.seen.insert(key.clone(), self.report.warnings.len());
         self.report.warnings.push(Warning {
-            loc: loc(),
+            loc,
             element: key.0,
             message: key.1,
             count: 1,
         });
-        Ok(())
     }
 
     pub(crate) fn finish(self) -> Report {

@@ -1,8 +1,12 @@
 //! Bad input: every file in `tests/malformed/` has exactly one problem, named
-//! by its file-name prefix (the expected `ErrorKind`). Loading must fail with
-//! that kind, at a line in that file, and never panic.
+//! by its file-name prefix (the expected `ErrorKind`). A strict load must fail
+//! with that kind, at a line in that file, and never panic. A default load
+//! fails the same way, except for the defects listed in [`REPAIRS`] (README,
+//! "Lenient loading"), which it repairs and reports once, at the place of the
+//! strict error.
 
-use candela_scene::{load, load_str, ErrorKind, LoadOptions};
+use candela_scene::{load, load_str, BsdfDesc, ErrorKind, LightKind, LoadOptions, Loaded};
+use glam::Vec3;
 use std::path::{Path, PathBuf};
 
 fn dir() -> PathBuf {
@@ -28,6 +32,7 @@ fn kind_named(prefix: &str) -> ErrorKind {
         "Truncated" => ErrorKind::Truncated,
         "NotText" => ErrorKind::NotText,
         "MissingReference" => ErrorKind::MissingReference,
+        "Unsupported" => ErrorKind::Unsupported,
         other => panic!("unknown expected kind {other}"),
     }
 }
@@ -55,7 +60,7 @@ fn the_valid_base_file_loads() {
 
 #[test]
 fn every_malformed_file_fails_with_its_kind_and_location() {
-    let mut n = 0;
+    let (mut n, mut repaired) = (0, 0);
     let mut entries: Vec<_> = std::fs::read_dir(dir().join("malformed"))
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -64,7 +69,7 @@ fn every_malformed_file_fails_with_its_kind_and_location() {
     for path in entries {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
         let want = kind_named(name.split('-').next().unwrap());
-        let err = match load(&path, &LoadOptions::default()) {
+        let err = match load(&path, &strict()) {
             Ok(_) => panic!("{name}: loaded, expected {want:?}"),
             Err(e) => e,
         };
@@ -80,9 +85,174 @@ fn every_malformed_file_fails_with_its_kind_and_location() {
             line.contains(&format!(":{}:{}: ", loc.line, loc.col)),
             "{line}"
         );
+        match REPAIRS.iter().find(|r| r.file == name) {
+            Some(repair) => {
+                check_repaired(&path, repair, &err);
+                repaired += 1;
+            }
+            None => {
+                let lenient = load(&path, &LoadOptions::default())
+                    .map(|_| ())
+                    .unwrap_err();
+                assert_eq!(
+                    (lenient.kind, lenient.loc),
+                    (err.kind, err.loc),
+                    "{lenient}"
+                );
+            }
+        }
         n += 1;
     }
     assert!(n >= 25 + 2 * 15, "only {n} malformed files");
+    assert_eq!(repaired, REPAIRS.len(), "a listed repair has no file");
+}
+
+fn strict() -> LoadOptions {
+    LoadOptions {
+        strict: true,
+        ..Default::default()
+    }
+}
+
+/// A defect the default mode repairs: the file, words of the warning's fix,
+/// and what the repaired scene must hold.
+struct Repair {
+    file: &'static str,
+    fix: &'static str,
+    check: fn(&Loaded),
+}
+
+fn near(a: Vec3, b: Vec3) -> bool {
+    (a - b).abs().max_element() < 1e-6
+}
+
+/// The base file's point light at node (0 0 2) in Z_UP, i.e. (0, 2, 0), with `color`.
+fn point_light_at_2(l: &Loaded, color: Vec3) {
+    let LightKind::Point {
+        position,
+        intensity,
+    } = l.scene.lights[0].kind
+    else {
+        panic!("{:?}", l.scene.lights)
+    };
+    assert!(near(position, Vec3::new(0.0, 2.0, 0.0)), "{position}");
+    assert!(near(intensity, color), "{intensity}");
+}
+
+fn triangles(l: &Loaded, n: usize) {
+    assert_eq!(l.scene.triangle_count(), n, "{:?}", l.scene.meshes);
+}
+
+fn red(l: &Loaded) -> &BsdfDesc {
+    &l.scene
+        .materials
+        .iter()
+        .find(|m| m.name == "red")
+        .unwrap()
+        .bsdf
+}
+
+const REPAIRS: &[Repair] = &[
+    Repair {
+        file: "CountMismatch-matrix.dae",
+        fix: "last row completed as 0 0 0 1",
+        check: |l| point_light_at_2(l, Vec3::ONE),
+    },
+    Repair {
+        file: "CountMismatch-matrix-15.dae",
+        fix: "last row completed as 0 0 0 1",
+        check: |l| point_light_at_2(l, Vec3::ONE),
+    },
+    Repair {
+        file: "CountMismatch-matrix-17.dae",
+        fix: "after the 16th dropped",
+        check: |l| point_light_at_2(l, Vec3::ONE),
+    },
+    Repair {
+        file: "CountMismatch-float_array-count.dae",
+        fix: "the 12 numbers present used",
+        check: |l| {
+            triangles(l, 2);
+            assert_eq!(l.scene.meshes[0].positions.len(), 4);
+        },
+    },
+    Repair {
+        file: "CountMismatch-polylist-count.dae",
+        fix: "the 1 polygons of <vcount> used",
+        check: |l| triangles(l, 2),
+    },
+    Repair {
+        file: "CountMismatch-vcount-vs-p.dae",
+        fix: "incomplete last polygon dropped",
+        check: |l| triangles(l, 0),
+    },
+    Repair {
+        file: "CountMismatch-p-last-polygon.dae",
+        fix: "incomplete last polygon dropped",
+        check: |l| {
+            triangles(l, 1);
+            assert_eq!(l.scene.meshes[0].triangles, vec![[0, 1, 2]]);
+        },
+    },
+    Repair {
+        file: "CountMismatch-triangles-last.dae",
+        fix: "incomplete last triangle dropped (1 kept)",
+        check: |l| triangles(l, 1),
+    },
+    Repair {
+        file: "CountMismatch-triangles-count.dae",
+        fix: "the 2 triangles in <p> used",
+        check: |l| triangles(l, 2),
+    },
+    Repair {
+        file: "CountMismatch-polygons-count.dae",
+        fix: "the 1 <p> polygons used",
+        check: |l| triangles(l, 2),
+    },
+    Repair {
+        file: "BadValue-light-color-negative.dae",
+        fix: "clamped to (1, 0, 1)",
+        check: |l| point_light_at_2(l, Vec3::new(1.0, 0.0, 1.0)),
+    },
+    Repair {
+        file: "BadValue-diffuse-above-one.dae",
+        fix: "clamped to (1, 0.1, 0.1)",
+        check: |l| {
+            let BsdfDesc::Diffuse { albedo } = red(l) else {
+                panic!("{:?}", red(l))
+            };
+            assert!(near(*albedo, Vec3::new(1.0, 0.1, 0.1)), "{albedo}");
+        },
+    },
+    Repair {
+        file: "NonFinite-ior.dae",
+        fix: "the default 1.5 used",
+        check: |l| assert!(matches!(red(l), BsdfDesc::Glass { ior, .. } if *ior == 1.5)),
+    },
+    Repair {
+        file: "NonFinite-reflectance.dae",
+        fix: "the default (1, 1, 1) used",
+        check: |l| {
+            assert!(matches!(red(l), BsdfDesc::Mirror { reflectance } if *reflectance == Vec3::ONE))
+        },
+    },
+];
+
+/// The default load of `path` succeeds with exactly one warning, at the
+/// strict error's place and element, saying how it was repaired.
+fn check_repaired(path: &Path, repair: &Repair, strict_err: &candela_scene::LoadError) {
+    let name = repair.file;
+    let loaded =
+        load(path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{name}: not repaired: {e}"));
+    let w = match loaded.report.warnings.as_slice() {
+        [w] => w,
+        _ => panic!("{name}: expected one warning:\n{}", loaded.report),
+    };
+    assert_eq!(Some(w.loc), strict_err.loc, "{name}: {w}");
+    assert_eq!(w.element, strict_err.element, "{name}: {w}");
+    assert!(w.message.contains(repair.fix), "{name}: {w}");
+    assert!(w.message.contains(&strict_err.message), "{name}: {w}");
+    (repair.check)(&loaded);
 }
 
 #[test]

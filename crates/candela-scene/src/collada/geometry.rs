@@ -2,9 +2,10 @@
 //! per primitive element) and CGL spheres.
 
 use super::builder::Builder;
+use super::lenient::cgl_technique;
 use super::numbers::float;
 use super::sources::SourceCache;
-use super::xml::{child, children, elements, require, technique, Ctx, XNode};
+use super::xml::{child, children, elements, require, Ctx, XNode};
 use super::{mesh, primitives};
 use crate::desc::SphereDesc;
 use crate::error::{ErrorKind, LoadError};
@@ -27,7 +28,7 @@ pub(crate) fn instance(ctx: &Ctx, b: &mut Builder, inst: XNode, m: Mat4) -> Resu
     if let Some(mesh_node) = child(geom, "mesh") {
         return read_mesh(ctx, b, mesh_node, &bindings, m, &name);
     }
-    if let Some(sphere) = technique(geom, "CGL").and_then(|t| child(t, "sphere")) {
+    if let Some(sphere) = cgl_technique(ctx, geom)?.and_then(|t| child(t, "sphere")) {
         let material = match bindings.first() {
             Some(&(_, mat)) => b.material(ctx, mat)?,
             None => b.default_material(),

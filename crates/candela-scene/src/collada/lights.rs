@@ -2,7 +2,8 @@
 //! then `blender`) and its placement by the node transform.
 
 use super::builder::Builder;
-use super::numbers::{float, vec3};
+use super::lenient::{cgl_technique, color, float_or, Color};
+use super::numbers::float;
 use super::xml::{child, elements, require, technique, text, Ctx, XNode};
 use crate::desc::{LightDesc, LightKind};
 use crate::error::{ErrorKind, LoadError};
@@ -18,8 +19,8 @@ pub(crate) fn instance(ctx: &Ctx, b: &mut Builder, inst: XNode, m: Mat4) -> Resu
         .or(light.attribute("id"))
         .unwrap_or("light")
         .to_string();
-    let kind = if let Some(t) = technique(light, "CGL").or_else(|| child(light, "technique_common"))
-    {
+    let cgl = cgl_technique(ctx, light)?;
+    let kind = if let Some(t) = cgl.or_else(|| child(light, "technique_common")) {
         let Some(model) = elements(t).next() else {
             return ctx.warn(t, "light technique without a light type; ignored");
         };
@@ -44,7 +45,7 @@ pub(crate) fn instance(ctx: &Ctx, b: &mut Builder, inst: XNode, m: Mat4) -> Resu
 
 /// A CGL or `technique_common` light whose type is the element `model`.
 fn standard(ctx: &Ctx, model: XNode, m: Mat4) -> Result<Option<LightKind>, LoadError> {
-    let color = || vec3(ctx, require(ctx, model, "color")?);
+    let color = || color(ctx, require(ctx, model, "color")?, Color::Emitted);
     let position = m.transform_point3(Vec3::ZERO);
     Ok(Some(match model.tag_name().name() {
         "point" => LightKind::Point {
@@ -59,9 +60,8 @@ fn standard(ctx: &Ctx, model: XNode, m: Mat4) -> Result<Option<LightKind>, LoadE
             position,
             direction: forward(ctx, model, m)?,
             intensity: color()?,
-            cone_angle_deg: child(model, "falloff_angle").map_or(Ok(180.0), |n| float(ctx, n))?,
-            falloff_exponent: child(model, "falloff_exponent")
-                .map_or(Ok(0.0), |n| float(ctx, n))?,
+            cone_angle_deg: float_or(ctx, child(model, "falloff_angle"), 180.0)?,
+            falloff_exponent: float_or(ctx, child(model, "falloff_exponent"), 0.0)?,
         },
         "ambient" => LightKind::Ambient { radiance: color()? },
         "area" => area(ctx, model, m, color()?)?,

@@ -5,7 +5,8 @@
 //! transmittance 1, roughness 0, ior 1.5, alpha 0.5. A conductor's `eta` and
 //! `k`, and an emitter's `radiance`, have no sensible default and are required.
 
-use super::numbers::{float, vec3};
+use super::lenient::{self, color_or, float_or, is_cgl, Color};
+use super::numbers::vec3;
 use super::xml::{child, children, elements, require, text, Ctx, XNode};
 use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, TextureRef, TextureSlot};
 use crate::error::LoadError;
@@ -27,10 +28,17 @@ pub(crate) fn read_material(ctx: &Ctx, material: XNode) -> Result<MaterialDesc, 
     let Some(effect) = ctx.resolve(inst, "url", &["effect"])? else {
         return Ok(desc);
     };
-    let cgl = effect
-        .descendants()
-        .find(|n| n.has_tag_name("technique") && n.attribute("profile") == Some("CGL"))
-        .and_then(|t| elements(t).next());
+    let techniques = || effect.descendants().filter(|n| n.has_tag_name("technique"));
+    let mut cgl = techniques().find(|t| t.attribute("profile") == Some("CGL"));
+    if cgl.is_none() {
+        for t in techniques() {
+            if is_cgl(ctx, t)? {
+                cgl = Some(t);
+                break;
+            }
+        }
+    }
+    let cgl = cgl.and_then(|t| elements(t).next());
     if let Some(model) = cgl {
         if let Some((bsdf, emission)) = cgl_bsdf(ctx, model)? {
             desc.bsdf = bsdf;
@@ -46,14 +54,14 @@ pub(crate) fn read_material(ctx: &Ctx, material: XNode) -> Result<MaterialDesc, 
 /// warning) for a model the loader does not know.
 fn cgl_bsdf(ctx: &Ctx, model: XNode) -> Result<Option<(BsdfDesc, Option<Vec3>)>, LoadError> {
     let color = |name: &str, default: Vec3| -> Result<Vec3, LoadError> {
-        child(model, name).map_or(Ok(default), |n| vec3(ctx, n))
+        color_or(ctx, child(model, name), Color::Reflectance, default)
     };
     let scalar = |name: &str, default: f32| -> Result<f32, LoadError> {
-        child(model, name).map_or(Ok(default), |n| float(ctx, n))
+        float_or(ctx, child(model, name), default)
     };
     let bsdf = match model.tag_name().name() {
         "emission" => {
-            let radiance = vec3(ctx, require(ctx, model, "radiance")?)?;
+            let radiance = lenient::color(ctx, require(ctx, model, "radiance")?, Color::Emitted)?;
             return Ok(Some((BsdfDesc::Black, Some(radiance))));
         }
         "mirror" => BsdfDesc::Mirror {
@@ -105,7 +113,7 @@ fn common_profile(ctx: &Ctx, effect: XNode, desc: &mut MaterialDesc) -> Result<(
     };
     if let Some(c) = child(diffuse, "color") {
         desc.bsdf = BsdfDesc::Diffuse {
-            albedo: vec3(ctx, c)?,
+            albedo: lenient::color(ctx, c, Color::Reflectance)?,
         };
     } else if let Some(t) = child(diffuse, "texture") {
         // The albedo stays 0.5 grey: it is what a renderer uses if the image

@@ -16,6 +16,7 @@ mod builder;
 mod cameras;
 pub(crate) use cameras::xfov_from_yfov;
 mod geometry;
+mod lenient;
 mod lights;
 mod materials;
 mod mesh;

@@ -138,13 +138,19 @@ fn check_count(
     found: usize,
 ) -> Result<(), LoadError> {
     match count {
-        Some(c) if c != found => Err(ctx.err(
-            node,
-            ErrorKind::CountMismatch,
-            format!("count=\"{c}\" but {found} numbers"),
-        )),
+        Some(c) if c != found => Err(count_mismatch(ctx, node, c, found)),
         _ => Ok(()),
     }
+}
+
+/// The error for an element whose `count` (declared or implied) is `c` but
+/// whose text holds `found` numbers.
+pub(crate) fn count_mismatch(ctx: &Ctx, node: XNode, c: usize, found: usize) -> LoadError {
+    ctx.err(
+        node,
+        ErrorKind::CountMismatch,
+        format!("count=\"{c}\" but {found} numbers"),
+    )
 }
 
 /// Keeps quoted input short in messages.

@@ -1,7 +1,7 @@
 //! Primitive elements (`<polylist>`, `<triangles>`, `<polygons>`): their
 //! inputs, polygon sizes and index lists, checked for consistency.
 
-use super::numbers::{attr_usize, indices, nth_token};
+use super::numbers::{attr_usize, count_mismatch, indices, nth_token};
 use super::xml::{child, children, elements, Ctx, XNode};
 use crate::error::{ErrorKind, LoadError};
 
@@ -165,8 +165,8 @@ fn triangle_counts(
     p: XNode,
     count: Option<usize>,
 ) -> Result<(), LoadError> {
-    let per = 3 * out.stride;
-    let n = out.p.len() / per.max(1);
+    let per = (3 * out.stride).max(1);
+    let (n, rest) = (out.p.len() / per, out.p.len() % per);
     let msg = match count {
         Some(c) if c.saturating_mul(per) != out.p.len() => {
             format!(
@@ -175,13 +175,20 @@ fn triangle_counts(
                 out.p.len()
             )
         }
-        _ if !out.p.len().is_multiple_of(per.max(1)) => {
-            format!("<p> has {} indices, not a multiple of {per}", out.p.len())
-        }
+        _ if rest != 0 => format!("<p> has {} indices, not a multiple of {per}", out.p.len()),
         _ => String::new(),
     };
     if !msg.is_empty() {
-        return Err(ctx.err(p, ErrorKind::CountMismatch, msg));
+        let err = ctx.err(p, ErrorKind::CountMismatch, msg);
+        let fix = match count {
+            // The indices are whole triangles: the count is only a wrong summary.
+            Some(_) if rest == 0 => format!("the {n} triangles in <p> used"),
+            // The last triangle is cut short (and the count, if any, agrees).
+            Some(c) if c != n + 1 => return Err(err),
+            _ => format!("the incomplete last triangle dropped ({n} kept)"),
+        };
+        ctx.repair(err, &fix)?;
+        out.p.truncate(n * per);
     }
     out.vcounts = vec![3; n];
     Ok(())
@@ -195,8 +202,20 @@ fn polylist_counts(
 ) -> Result<(), LoadError> {
     let vc = child(out.node, "vcount")
         .ok_or_else(|| ctx.err(out.node, ErrorKind::MissingElement, "missing <vcount>"))?;
-    out.vcounts = indices(ctx, vc, count)?;
-    let mut corners: u64 = 0;
+    out.vcounts = indices(ctx, vc, None)?;
+    let stride = out.stride as u64;
+    let corners: u64 = out.vcounts.iter().map(|&n| u64::from(n)).sum();
+    let needed = corners.saturating_mul(stride);
+    let found = out.p.len() as u64;
+    if let Some(c) = count.filter(|&c| c != out.vcounts.len()) {
+        // `<vcount>` and `<p>` agreeing outvote the count attribute.
+        let err = count_mismatch(ctx, vc, c, out.vcounts.len());
+        if needed != found {
+            return Err(err);
+        }
+        let fix = format!("the {} polygons of <vcount> used", out.vcounts.len());
+        ctx.repair(err, &fix)?;
+    }
     for (i, &n) in out.vcounts.iter().enumerate() {
         if n < 3 {
             let msg = format!("polygon {i} has {n} vertices (at least 3 needed)");
@@ -205,18 +224,22 @@ fn polylist_counts(
                 None => ctx.err(vc, ErrorKind::BadPolygon, msg),
             });
         }
-        corners += u64::from(n);
     }
-    let needed = corners.saturating_mul(out.stride as u64);
-    if needed != out.p.len() as u64 {
-        return Err(ctx.err(
+    if needed != found {
+        let err = ctx.err(
             p,
             ErrorKind::CountMismatch,
-            format!(
-                "<vcount> needs {needed} indices but <p> has {}",
-                out.p.len()
-            ),
-        ));
+            format!("<vcount> needs {needed} indices but <p> has {found}"),
+        );
+        // Only a `<p>` that ends inside the last polygon is repaired: every
+        // other polygon is whole, and nothing is invented for the last.
+        let last = out.vcounts.last().map_or(0, |&n| u64::from(n) * stride);
+        if found > needed || found < needed - last {
+            return Err(err);
+        }
+        ctx.repair(err, "the incomplete last polygon dropped")?;
+        out.vcounts.pop();
+        out.p.truncate((needed - last) as usize);
     }
     Ok(())
 }
@@ -265,11 +288,12 @@ fn read_polygons<'a, 'i>(
         out.vcounts.push(n as u32);
     }
     if let Some(c) = count.filter(|&c| c != polys) {
-        return Err(ctx.err(
+        let err = ctx.err(
             out.node,
             ErrorKind::CountMismatch,
             format!("count=\"{c}\" but {polys} polygons"),
-        ));
+        );
+        ctx.repair(err, &format!("the {polys} <p> polygons used"))?;
     }
     Ok(())
 }

@@ -1,6 +1,6 @@
 //! `<source>` elements: a float array read through its accessor.
 
-use super::numbers::{attr_usize, floats};
+use super::numbers::{attr_usize, count_mismatch, floats};
 use super::xml::{child, require, Ctx, XNode};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Vec2, Vec3};
@@ -66,14 +66,7 @@ fn read_source(ctx: &Ctx, source: XNode, components: usize) -> Result<Source, Lo
     }
     .ok_or_else(|| ctx.err(source, ErrorKind::MissingElement, "missing <float_array>"))?;
     let declared = attr_usize(ctx, array, "count")?;
-    let data = floats(ctx, array, declared)?;
-    if stride < components {
-        return Err(ctx.err(
-            acc,
-            ErrorKind::BadValue,
-            format!("stride {stride} is less than the {components} components needed"),
-        ));
-    }
+    let data = floats(ctx, array, None)?;
     let needed = match count {
         0 => 0,
         n => (n - 1)
@@ -81,6 +74,28 @@ fn read_source(ctx: &Ctx, source: XNode, components: usize) -> Result<Source, Lo
             .and_then(|x| x.checked_add(offset + components))
             .unwrap_or(usize::MAX),
     };
+    if let Some(c) = declared.filter(|&c| c != data.len()) {
+        // The accessor says how many numbers are used: when the array holds
+        // them, its own count is only a wrong summary.
+        let err = count_mismatch(ctx, array, c, data.len());
+        if needed > data.len() {
+            return Err(err);
+        }
+        ctx.repair(
+            err,
+            &format!(
+                "the {} numbers present used (the accessor needs {needed})",
+                data.len()
+            ),
+        )?;
+    }
+    if stride < components {
+        return Err(ctx.err(
+            acc,
+            ErrorKind::BadValue,
+            format!("stride {stride} is less than the {components} components needed"),
+        ));
+    }
     if needed > data.len() {
         return Err(ctx.err(
             acc,

@@ -63,12 +63,7 @@ pub(crate) fn local_transform(ctx: &Ctx, node: XNode) -> Result<Mat4, LoadError>
     let mut m = Mat4::IDENTITY;
     for el in elements(node) {
         let t = match el.tag_name().name() {
-            "matrix" => {
-                let v = floats(ctx, el, Some(16)).map_err(|e| expected(e, 16))?;
-                let mut a = [0.0; 16];
-                a.copy_from_slice(&v);
-                matrix_from_row_major(&a)
-            }
+            "matrix" => matrix_from_row_major(&super::lenient::matrix(ctx, el)?),
             "translate" => {
                 let v = floats(ctx, el, Some(3)).map_err(|e| expected(e, 3))?;
                 Mat4::from_translation(Vec3::new(v[0], v[1], v[2]))

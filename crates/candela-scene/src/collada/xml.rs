@@ -105,6 +105,17 @@ impl<'a, 'i> Ctx<'a, 'i> {
             .warn(element, message.into(), || self.loc(node))
     }
 
+    /// Whether this is a strict load (no warnings, no repairs, no aliases).
+    pub fn strict(&self) -> bool {
+        self.warnings.borrow().strict()
+    }
+
+    /// Repairs a defect: `err` in strict mode, otherwise a warning saying
+    /// what was wrong and the `fix` applied (see [`super::lenient`]).
+    pub fn repair(&self, err: LoadError, fix: &str) -> Result<(), LoadError> {
+        self.warnings.borrow_mut().repair(err, fix)
+    }
+
     /// The element with this `id`, if any.
     pub fn by_id(&self, id: &str) -> Option<XNode<'a, 'i>> {
         self.ids.get(id).copied()
