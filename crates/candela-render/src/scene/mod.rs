@@ -214,8 +214,10 @@ fn desc_environment(desc: &SceneDesc) -> Result<Option<Arc<EnvironmentMap>>, Sce
                 .map_err(|e| bad(&format!("{}: {e}", path.display())))?
         }
         Some(EnvironmentDesc::Constant { radiance }) => {
-            let image = RgbImage::from_pixels(1, 1, vec![radiance.to_array()]).map_err(|e| bad(&e))?;
-            EnvironmentMap::from_image(&image, &EnvironmentOptions::default()).map_err(|e| bad(&e))?
+            let image =
+                RgbImage::from_pixels(1, 1, vec![radiance.to_array()]).map_err(|e| bad(&e))?;
+            EnvironmentMap::from_image(&image, &EnvironmentOptions::default())
+                .map_err(|e| bad(&e))?
         }
     };
     Ok(Some(Arc::new(map)))
