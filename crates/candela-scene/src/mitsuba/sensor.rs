@@ -106,7 +106,9 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
         Projection::Perspective { xfov_deg, yfov_deg }
     };
     let world_from_camera = to_world(doc, node)? * Mat4::from_scale(Vec3::new(-1.0, 1.0, -1.0));
-    if !(world_from_camera.determinant().abs() > 1e-12) {
+    if world_from_camera.determinant().abs().partial_cmp(&1e-12)
+        != Some(std::cmp::Ordering::Greater)
+    {
         return Err(doc.err(
             node,
             ErrorKind::DegenerateCamera,

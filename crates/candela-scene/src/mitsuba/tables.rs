@@ -5,7 +5,7 @@
 //! 589 nm). The conductors' complex IORs are RGB values: Mitsuba 0.5's
 //! spectral eta/k data (Palik's handbook, via pbrt) integrated against the
 //! sRGB colour matching functions, as widely reproduced (e.g. pbrt-v3's
-//! named spectra converted to RGB); they match Johnson & Christy's gold and
+//! named spectra converted to RGB); rounded to 4 decimals; they match Johnson & Christy's gold and
 //! copper at roughly 650/550/450 nm.
 
 use glam::Vec3;
@@ -49,36 +49,12 @@ pub(super) fn ior_names() -> String {
 
 /// Conductors: (name, eta RGB, k RGB).
 const CONDUCTORS: &[(&str, [f32; 3], [f32; 3])] = &[
-    (
-        "Ag",
-        [0.155_265, 0.116_723, 0.138_381],
-        [4.828_343, 3.122_246, 2.146_950],
-    ),
-    (
-        "Al",
-        [1.657_460, 0.880_369, 0.521_229],
-        [9.223_869, 6.269_523, 4.837_001],
-    ),
-    (
-        "Au",
-        [0.143_119, 0.374_957, 1.442_479],
-        [3.983_160, 2.385_721, 1.603_215],
-    ),
-    (
-        "Cr",
-        [4.369_683, 2.916_702, 1.654_701],
-        [5.206_434, 4.231_365, 3.754_947],
-    ),
-    (
-        "Cu",
-        [0.200_438, 0.924_033, 1.102_212],
-        [3.912_949, 2.452_848, 2.142_188],
-    ),
-    (
-        "Be",
-        [4.185_059, 3.185_060, 2.784_091],
-        [3.835_440, 3.010_126, 2.869_009],
-    ),
+    ("Ag", [0.1553, 0.1167, 0.1384], [4.8283, 3.1222, 2.1469]),
+    ("Al", [1.6575, 0.8804, 0.5212], [9.2239, 6.2695, 4.8370]),
+    ("Au", [0.1431, 0.3750, 1.4425], [3.9832, 2.3857, 1.6032]),
+    ("Cr", [4.3697, 2.9167, 1.6547], [5.2064, 4.2314, 3.7549]),
+    ("Cu", [0.2004, 0.9240, 1.1022], [3.9129, 2.4528, 2.1422]),
+    ("Be", [4.1851, 3.1851, 2.7841], [3.8354, 3.0101, 2.8690]),
     // Mitsuba's "none": a perfect mirror (eta 0, k 1 gives Fresnel 1).
     ("none", [0.0, 0.0, 0.0], [1.0, 1.0, 1.0]),
 ];
