@@ -150,3 +150,54 @@ fn the_mitsuba_and_collada_files_render_alike() {
         "left {left} right {right}"
     );
 }
+
+#[test]
+fn a_constant_environment_is_seen_in_every_direction() {
+    // Mitsuba's `constant` emitter: the same radiance from the whole sphere
+    // (the CS184 ambient light covers only the upper hemisphere).
+    let desc = SceneDesc {
+        cameras: vec![common::camera_at(Vec3::ZERO)],
+        // A speck far away, so that the scene is not empty.
+        spheres: vec![candela_scene::SphereDesc {
+            name: "speck".into(),
+            center: Vec3::splat(1000.0),
+            radius: 1e-3,
+            material: 0,
+            loc: SourceLoc::default(),
+        }],
+        materials: vec![common::material(
+            "grey",
+            candela_scene::BsdfDesc::Diffuse {
+                albedo: Vec3::splat(0.5),
+            },
+            None,
+        )],
+        environment: Some(candela_scene::EnvironmentDesc::Constant {
+            radiance: Vec3::new(0.25, 0.5, 1.0),
+        }),
+        ..SceneDesc::default()
+    };
+    for turn in [0.0f32, 90.0, 180.0] {
+        let mut desc = desc.clone();
+        desc.cameras[0].world_from_camera = Mat4::from_rotation_x(turn.to_radians());
+        let opts = SceneOptions {
+            width: 8,
+            height: 8,
+            camera_mode: CameraMode::File,
+            ..SceneOptions::default()
+        };
+        let scene = Scene::build(&desc, &opts).unwrap();
+        let settings = RenderSettings {
+            spp: 2,
+            integrator: IntegratorSettings::default(),
+            ..Default::default()
+        };
+        let image = render(&scene, &settings, &|_| {}).unwrap().film.resolve();
+        for p in image.pixels() {
+            assert!(
+                (Vec3::from(*p) - Vec3::new(0.25, 0.5, 1.0)).length() < 1e-4,
+                "{p:?} at {turn}"
+            );
+        }
+    }
+}
