@@ -201,3 +201,65 @@ fn a_constant_environment_is_seen_in_every_direction() {
         }
     }
 }
+
+#[test]
+fn the_new_bsdf_descriptions_map_to_the_renderers_bsdfs() {
+    use candela_render::bsdf::Bsdf;
+    use candela_render::material::Material;
+    use candela_render::texture::TextureCache;
+    use candela_scene::{BsdfDesc, MicrofacetModel};
+    let map = |bsdf: BsdfDesc| {
+        let desc = common::material("m", bsdf, None);
+        let (m, unsupported) = Material::from_desc(&desc, &mut TextureCache::new());
+        (m.bsdf.unwrap(), unsupported.len())
+    };
+    let ggx = MicrofacetModel::Ggx;
+    let one = Vec3::ONE;
+    let (b, n) = map(BsdfDesc::RoughDielectric {
+        distribution: ggx,
+        alpha: 0.3,
+        ior: 1.5,
+        reflectance: one,
+        transmittance: one,
+    });
+    assert!(
+        matches!(b, Bsdf::RoughGlass { distribution, .. } if distribution.alphas() == (0.3, 0.3))
+            && n == 0
+    );
+    let (b, _) = map(BsdfDesc::ThinDielectric {
+        ior: 1.5,
+        reflectance: one,
+        transmittance: one,
+    });
+    assert!(matches!(b, Bsdf::ThinGlass { .. }));
+    let plastic = |alpha| BsdfDesc::Plastic {
+        diffuse: Vec3::splat(0.5),
+        specular: one,
+        ior: 1.49,
+        alpha,
+        distribution: MicrofacetModel::Beckmann,
+    };
+    assert!(matches!(map(plastic(0.0)), (Bsdf::Plastic(_), 0)));
+    // Rough plastic is rendered smooth, and says so.
+    assert!(matches!(map(plastic(0.2)), (Bsdf::Plastic(_), 1)));
+    let conductor = |alpha, eta: Vec3, k: Vec3| BsdfDesc::Conductor {
+        distribution: ggx,
+        alpha,
+        eta,
+        k,
+    };
+    assert!(matches!(
+        map(conductor(0.2, one, one)).0,
+        Bsdf::Microfacet { .. }
+    ));
+    // Smooth: a mirror of the normal-incidence Fresnel reflectance, which
+    // is 1 for Mitsuba's "none" (eta 0, k 1) and ((n-1)^2+k^2)/((n+1)^2+k^2).
+    let Bsdf::Mirror { reflectance } = map(conductor(0.0, Vec3::ZERO, one)).0 else {
+        panic!()
+    };
+    assert!((reflectance - one).length() < 1e-6);
+    let Bsdf::Mirror { reflectance } = map(conductor(0.0, Vec3::splat(2.0), Vec3::ZERO)).0 else {
+        panic!()
+    };
+    assert!((reflectance - Vec3::splat(1.0 / 9.0)).length() < 1e-6);
+}
