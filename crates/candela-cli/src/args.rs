@@ -91,6 +91,11 @@ pub struct RenderArgs {
     #[arg(long)]
     pub strict: bool,
 
+    /// Sets a scene parameter, replacing the file's default (Mitsuba's
+    /// `$name`): `-D spp=16 -D res=512`.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub defines: Vec<(String, String)>,
+
     /// No progress bar and no statistics on stderr.
     #[arg(short = 'q', long)]
     pub quiet: bool,
@@ -222,3 +227,13 @@ pub fn parse() -> (Cli, ArgMatches) {
 
 #[cfg(test)]
 mod tests;
+
+/// `NAME=VALUE` of `-D`: the name non-empty, the value possibly empty.
+fn parse_define(text: &str) -> Result<(String, String), String> {
+    match text.split_once('=') {
+        Some((name, value)) if !name.trim().is_empty() => {
+            Ok((name.trim().to_string(), value.to_string()))
+        }
+        _ => Err(format!("expected NAME=VALUE, got \"{text}\"")),
+    }
+}

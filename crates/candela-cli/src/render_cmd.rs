@@ -119,6 +119,7 @@ fn load(args: &RenderArgs) -> Result<Loaded> {
             path,
             &LoadOptions {
                 strict: args.strict,
+                defines: args.defines.clone(),
                 ..Default::default()
             },
         )?,

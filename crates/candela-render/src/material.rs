@@ -8,10 +8,10 @@
 //! returned by name as [`Unsupported`] (the scene reports it once), never
 //! dropped silently.
 
-use crate::bsdf::{Bsdf, MicrofacetDistribution};
+use crate::bsdf::{Bsdf, MicrofacetDistribution, Plastic};
 use crate::shape::SurfaceHit;
 use crate::texture::{ImageTexture, TextureCache};
-use candela_scene::{BsdfDesc, MaterialDesc, TextureSlot};
+use candela_scene::{BsdfDesc, MaterialDesc, MicrofacetModel, TextureSlot};
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -68,6 +68,58 @@ impl Material {
                 distribution: MicrofacetDistribution::beckmann(alpha),
                 eta,
                 k,
+            }),
+            BsdfDesc::RoughDielectric {
+                distribution,
+                alpha,
+                ior,
+                reflectance,
+                transmittance,
+            } => Some(Bsdf::RoughGlass {
+                distribution: microfacets(distribution, alpha),
+                reflectance,
+                transmittance,
+                ior,
+            }),
+            BsdfDesc::ThinDielectric {
+                ior,
+                reflectance,
+                transmittance,
+            } => Some(Bsdf::ThinGlass {
+                reflectance,
+                transmittance,
+                ior,
+            }),
+            BsdfDesc::Plastic {
+                diffuse,
+                specular,
+                ior,
+                alpha,
+                ..
+            } => {
+                if alpha > 0.0 {
+                    unsupported.push(Unsupported(format!(
+                        "material '{}': rough plastic rendered as smooth plastic",
+                        desc.name
+                    )));
+                }
+                Some(Bsdf::Plastic(Plastic::new(diffuse, specular, ior)))
+            }
+            BsdfDesc::Conductor {
+                distribution,
+                alpha,
+                eta,
+                k,
+            } if alpha > 0.0 => Some(Bsdf::Microfacet {
+                distribution: microfacets(distribution, alpha),
+                eta,
+                k,
+            }),
+            // No smooth Fresnel conductor yet: a mirror with the
+            // conductor's normal-incidence reflectance (the colour is
+            // right, the brightening toward grazing angles is lost).
+            BsdfDesc::Conductor { eta, k, .. } => Some(Bsdf::Mirror {
+                reflectance: conductor_reflectance_at_normal(eta, k),
             }),
             BsdfDesc::Black => None,
         };
@@ -131,4 +183,21 @@ fn glass(reflectance: Vec3, transmittance: Vec3, roughness: f32, ior: f32) -> Bs
             ior,
         }
     }
+}
+
+/// The distribution a description names, with roughness `alpha`.
+fn microfacets(model: MicrofacetModel, alpha: f32) -> MicrofacetDistribution {
+    match model {
+        MicrofacetModel::Beckmann => MicrofacetDistribution::beckmann(alpha),
+        MicrofacetModel::Ggx => MicrofacetDistribution::ggx(alpha),
+    }
+}
+
+/// A conductor's Fresnel reflectance at normal incidence,
+/// ((η − 1)² + k²) / ((η + 1)² + k²) per channel.
+fn conductor_reflectance_at_normal(eta: Vec3, k: Vec3) -> Vec3 {
+    let k2 = k * k;
+    let num = (eta - Vec3::ONE) * (eta - Vec3::ONE) + k2;
+    let den = (eta + Vec3::ONE) * (eta + Vec3::ONE) + k2;
+    (num / den.max(Vec3::splat(f32::MIN_POSITIVE))).clamp(Vec3::ZERO, Vec3::ONE)
 }

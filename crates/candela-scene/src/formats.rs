@@ -40,6 +40,11 @@ pub(crate) const FORMATS: &[Format] = &[
         extensions: &["gltf", "glb"],
         load: crate::gltf::load_file,
     },
+    Format {
+        name: "Mitsuba 3 XML",
+        extensions: &["xml"],
+        load: crate::mitsuba::load_file,
+    },
 ];
 
 /// The format whose extensions include `path`'s (case-insensitive), or an

@@ -17,6 +17,7 @@ mod formats;
 mod gltf;
 mod hints;
 mod lamps;
+mod mitsuba;
 mod obj;
 mod ply;
 mod report;
@@ -30,7 +31,7 @@ pub use report::{Report, Warning};
 use std::path::{Path, PathBuf};
 
 /// How strictly to load.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct LoadOptions {
     /// Turn every warning (an ignored element or feature) into an
     /// [`ErrorKind::Unsupported`] error, for users who want to know that what
@@ -44,6 +45,11 @@ pub struct LoadOptions {
     /// that want the file exactly as written: rendering both doubles the light.
     /// (When the two radiances differ, the merged lamp takes the area light's.)
     pub keep_duplicate_lamps: bool,
+    /// Parameter values given by the caller (`-D name=value`), replacing a
+    /// file's own defaults: a Mitsuba file's `<default name=.. value=..>`
+    /// only applies when the caller did not name the parameter. Formats
+    /// without parameters ignore them.
+    pub defines: Vec<(String, String)>,
 }
 
 /// A loaded scene and what the loader ignored on the way.

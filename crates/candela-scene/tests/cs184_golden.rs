@@ -21,6 +21,7 @@ fn load_strict(name: &str) -> Option<SceneDesc> {
     let opts = LoadOptions {
         strict: true,
         keep_duplicate_lamps: true,
+        ..LoadOptions::default()
     };
     let loaded = load(&path, &opts).unwrap_or_else(|e| panic!("{e}"));
     assert!(loaded.report.is_empty(), "{}", loaded.report);

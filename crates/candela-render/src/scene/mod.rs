@@ -14,13 +14,14 @@ use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
 use crate::camera::Camera;
 use crate::geometry::Ray;
-use crate::light::{EnvironmentMap, LightSet};
+use crate::light::{EnvironmentMap, EnvironmentOptions, LightSet};
 use crate::material::Material;
 use crate::shape::SurfaceHit;
 use crate::texture::TextureCache;
 use candela_bvh::BuildStrategy;
 use candela_bvh::TraversalStats;
-use candela_scene::SceneDesc;
+use candela_image::RgbImage;
+use candela_scene::{EnvironmentDesc, SceneDesc};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -77,6 +78,9 @@ pub enum SceneError {
     /// A lens setting is negative or not finite.
     #[error("lens: {0}")]
     Lens(String),
+    /// The description's environment map cannot be read.
+    #[error("environment: {0}")]
+    Environment(String),
 }
 
 /// An immutable scene, shared by all render threads.
@@ -131,11 +135,16 @@ impl Scene {
             .bounds()
             .unwrap_or((glam::Vec3::ZERO, glam::Vec3::ZERO));
         let scene_radius = 0.5 * (hi - lo).length();
+        // The caller's environment (the CLI's `-e`) replaces the file's.
+        let environment = match &opts.environment {
+            Some(map) => Some(map.clone()),
+            None => desc_environment(desc)?,
+        };
         let lights = lights::build_lights(
             desc,
             &geometry,
             &materials,
-            opts.environment.as_ref(),
+            environment.as_ref(),
             scene_radius,
         );
         let start = Instant::now();
@@ -188,6 +197,30 @@ impl Scene {
     pub fn occluded(&self, ray: &Ray, stats: &mut TraversalStats) -> bool {
         self.accel.occluded_counted(ray, stats)
     }
+}
+
+/// The environment the description asks for: an image, or a constant
+/// radiance (a one-pixel map, uniform over the sphere).
+fn desc_environment(desc: &SceneDesc) -> Result<Option<Arc<EnvironmentMap>>, SceneError> {
+    let bad = |e: &dyn std::fmt::Display| SceneError::Environment(e.to_string());
+    let map = match &desc.environment {
+        None => return Ok(None),
+        Some(EnvironmentDesc::Map { path, scale }) => {
+            let options = EnvironmentOptions {
+                scale: *scale,
+                ..EnvironmentOptions::default()
+            };
+            EnvironmentMap::load(path, &options)
+                .map_err(|e| bad(&format!("{}: {e}", path.display())))?
+        }
+        Some(EnvironmentDesc::Constant { radiance }) => {
+            let image =
+                RgbImage::from_pixels(1, 1, vec![radiance.to_array()]).map_err(|e| bad(&e))?;
+            EnvironmentMap::from_image(&image, &EnvironmentOptions::default())
+                .map_err(|e| bad(&e))?
+        }
+    };
+    Ok(Some(Arc::new(map)))
 }
 
 /// One warning per mesh that no instance places (stored but not drawn).

@@ -248,6 +248,64 @@ pub enum BsdfDesc {
         /// Imaginary part (absorption), per channel.
         k: Vec3,
     },
+    /// Rough dielectric interface (reflection and refraction through
+    /// microfacets), with a choice of distribution.
+    RoughDielectric {
+        /// The microfacet distribution.
+        distribution: MicrofacetModel,
+        /// Roughness alpha (> 0).
+        alpha: f32,
+        /// Index of refraction of the inside relative to the outside.
+        ior: f32,
+        /// Reflectance scale per channel.
+        reflectance: Vec3,
+        /// Transmittance scale per channel.
+        transmittance: Vec3,
+    },
+    /// A dielectric pane of zero thickness (light passes straight through).
+    ThinDielectric {
+        /// Index of refraction of the pane relative to its surroundings.
+        ior: f32,
+        /// Reflectance scale per channel.
+        reflectance: Vec3,
+        /// Transmittance scale per channel.
+        transmittance: Vec3,
+    },
+    /// A diffuse base under a dielectric coating (smooth when `alpha` is 0).
+    Plastic {
+        /// Albedo of the base.
+        diffuse: Vec3,
+        /// Tint of the coating's specular reflection.
+        specular: Vec3,
+        /// Index of refraction of the coating relative to the outside.
+        ior: f32,
+        /// Roughness alpha of the coating (0 = smooth).
+        alpha: f32,
+        /// The coating's microfacet distribution when rough.
+        distribution: MicrofacetModel,
+    },
+    /// A conductor with a complex index of refraction, smooth when `alpha`
+    /// is 0, else rough with the given distribution.
+    Conductor {
+        /// The microfacet distribution.
+        distribution: MicrofacetModel,
+        /// Roughness alpha (0 = smooth).
+        alpha: f32,
+        /// Real part of the complex index of refraction, per channel.
+        eta: Vec3,
+        /// Imaginary part (absorption), per channel.
+        k: Vec3,
+    },
     /// Black: absorbs everything (the BSDF of a pure emitter).
     Black,
+}
+
+/// Microfacet normal distributions.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum MicrofacetModel {
+    /// Beckmann (Gaussian slopes).
+    #[default]
+    Beckmann,
+    /// GGX / Trowbridge-Reitz (longer tails).
+    Ggx,
 }

@@ -20,7 +20,9 @@ mod camera;
 mod material;
 
 pub use camera::{CameraDesc, Projection};
-pub use material::{BsdfDesc, ColorSpace, MaterialDesc, TextureRef, TextureSlot, TextureSlots};
+pub use material::{
+    BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, TextureRef, TextureSlot, TextureSlots,
+};
 
 use glam::{Mat4, Vec2, Vec3};
 use std::path::PathBuf;
@@ -57,6 +59,26 @@ pub struct SceneDesc {
     pub materials: Vec<MaterialDesc>,
     /// Light sources that are not emissive geometry.
     pub lights: Vec<LightDesc>,
+    /// Light arriving from infinitely far away in every direction, if the
+    /// file describes some (a renderer's own environment option replaces it).
+    pub environment: Option<EnvironmentDesc>,
+}
+
+/// An environment (light at infinity over the whole sphere of directions).
+#[derive(Clone, Debug, PartialEq)]
+pub enum EnvironmentDesc {
+    /// An equirectangular image (+Y up), its radiance times `scale`.
+    Map {
+        /// Path of the image, resolved relative to the scene file.
+        path: PathBuf,
+        /// Multiplies every pixel's radiance.
+        scale: f32,
+    },
+    /// The same radiance from every direction.
+    Constant {
+        /// Radiance per channel.
+        radiance: Vec3,
+    },
 }
 
 /// A triangle mesh. Attributes have their own index arrays (as COLLADA does),

@@ -108,7 +108,6 @@ pub(crate) fn load_file(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadE
 /// Reads the OBJ file `path` as one mesh, ignoring its materials: for
 /// formats (Mitsuba) that reference mesh files and give materials
 /// themselves. Warnings go to `warnings`.
-#[allow(dead_code)] // Called by the Mitsuba loader (issue 11).
 pub(crate) fn read_obj_mesh(path: &Path, warnings: &mut Collector) -> Result<MeshDesc, LoadError> {
     let text = read(path)?;
     let scan = scan::scan(&text, path, warnings)?;

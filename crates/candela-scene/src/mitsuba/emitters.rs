@@ -1,0 +1,138 @@
+//! Emitters: `area` (inside a shape: its radiance becomes the material's
+//! emission), `point`, `spot`, `directional`, `envmap` and `constant` (the
+//! scene's [`EnvironmentDesc`]).
+//!
+//! Mitsuba's spot light fades smoothly from `beam_width` to
+//! `cutoff_angle`; Candela's is a hard cone of half-angle `cutoff_angle`
+//! (the fade is reported when the two differ).
+
+use super::doc::{Doc, XNode};
+use super::transform::to_world;
+use super::values::{float, point};
+use super::Builder;
+use crate::desc::{EnvironmentDesc, LightDesc, LightKind};
+use crate::error::{ErrorKind, LoadError};
+use glam::{Mat4, Vec3};
+
+/// The radiance of a shape's `<emitter type="area">`.
+pub(super) fn area_radiance(b: &mut Builder, doc: &Doc, node: XNode) -> Result<Vec3, LoadError> {
+    let kind = doc.plugin_type(node)?;
+    if kind != "area" {
+        return Err(doc.err(
+            node,
+            ErrorKind::BadValue,
+            format!("a shape's emitter must be \"area\", not \"{kind}\""),
+        ));
+    }
+    b.constant(doc, node, "radiance", Vec3::ONE)
+}
+
+/// A top-level `<emitter>`.
+pub(super) fn emitter(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), LoadError> {
+    let kind = doc.plugin_type(node)?;
+    let name = doc.attr(node, "id")?.unwrap_or_else(|| kind.clone());
+    let m = to_world(doc, node)?;
+    let light = match kind.as_str() {
+        "point" => LightKind::Point {
+            position: point(doc, node, "position")?
+                .unwrap_or_else(|| m.transform_point3(Vec3::ZERO)),
+            intensity: b.constant(doc, node, "intensity", Vec3::ONE)?,
+        },
+        "spot" => {
+            let cutoff = float(doc, node, "cutoff_angle", 20.0)?;
+            let beam = float(doc, node, "beam_width", 0.75 * cutoff)?;
+            if !(cutoff > 0.0 && cutoff <= 90.0) {
+                return Err(doc.err(
+                    node,
+                    ErrorKind::BadValue,
+                    format!("cutoff_angle {cutoff} is not in (0, 90]"),
+                ));
+            }
+            if beam < cutoff {
+                b.warn(doc, node, "the spot light's fade from beam_width to cutoff_angle is rendered as a hard edge at cutoff_angle")?;
+            }
+            LightKind::Spot {
+                position: m.transform_point3(Vec3::ZERO),
+                direction: forward(doc, node, m)?,
+                intensity: b.constant(doc, node, "intensity", Vec3::ONE)?,
+                cone_angle_deg: 2.0 * cutoff,
+                falloff_exponent: 0.0,
+            }
+        }
+        "directional" => {
+            let direction = match point(doc, node, "direction")? {
+                Some(d) => d
+                    .try_normalize()
+                    .ok_or_else(|| doc.err(node, ErrorKind::BadValue, "direction is zero"))?,
+                None => forward(doc, node, m)?,
+            };
+            LightKind::Directional {
+                direction,
+                radiance: b.constant(doc, node, "irradiance", Vec3::ONE)?,
+            }
+        }
+        "envmap" => {
+            let path = b.existing_file(doc, node)?;
+            let scale = float(doc, node, "scale", 1.0)?;
+            if m != Mat4::IDENTITY {
+                b.warn(
+                    doc,
+                    node,
+                    "an environment map's to_world is not supported (ignored)",
+                )?;
+            }
+            return set_environment(b, doc, node, EnvironmentDesc::Map { path, scale });
+        }
+        "constant" => {
+            let radiance = b.constant(doc, node, "radiance", Vec3::ONE)?;
+            return set_environment(b, doc, node, EnvironmentDesc::Constant { radiance });
+        }
+        "area" => {
+            return Err(doc.err(
+                node,
+                ErrorKind::BadValue,
+                "an area emitter belongs inside a <shape>",
+            ))
+        }
+        "projector" | "directionalarea" | "sunsky" => {
+            return b.warn(
+                doc,
+                node,
+                format!("emitter type \"{kind}\" is not supported (skipped)"),
+            )
+        }
+        other => {
+            return Err(doc.err(
+                node,
+                ErrorKind::BadValue,
+                format!("unknown emitter type \"{other}\""),
+            ))
+        }
+    };
+    b.scene.lights.push(LightDesc {
+        name,
+        kind: light,
+        loc: doc.loc(node),
+    });
+    Ok(())
+}
+
+/// Mitsuba lights shine along their local +Z.
+fn forward(doc: &Doc, node: XNode, m: Mat4) -> Result<Vec3, LoadError> {
+    m.transform_vector3(Vec3::Z)
+        .try_normalize()
+        .ok_or_else(|| doc.err(node, ErrorKind::BadValue, "to_world maps +Z to zero"))
+}
+
+fn set_environment(
+    b: &mut Builder,
+    doc: &Doc,
+    node: XNode,
+    env: EnvironmentDesc,
+) -> Result<(), LoadError> {
+    if b.scene.environment.is_some() {
+        b.warn(doc, node, "a second environment emitter replaces the first")?;
+    }
+    b.scene.environment = Some(env);
+    Ok(())
+}

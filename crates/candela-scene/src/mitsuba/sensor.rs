@@ -1,0 +1,238 @@
+//! The sensor (camera), its film and sampler, and the integrator. Film
+//! size, sample count and depth become [`crate::RenderHints`]: defaults
+//! that command-line flags override.
+//!
+//! # Camera handedness
+//! A Mitsuba camera looks down its local +Z with +Y up and +X to the *left*
+//! of the image (its `lookat` builds x = up × dir). A Candela camera looks
+//! down −Z with +X to the right. Turning the Mitsuba frame half a turn
+//! about its Y axis (x → −x, z → −z) maps one onto the other, so
+//! `world_from_camera = to_world · diag(−1, 1, −1)`: a rotation, the image
+//! is not mirrored.
+//!
+//! # Depth
+//! Mitsuba's `max_depth` counts path segments (1 = emitters seen directly);
+//! Candela's counts bounces (0 = emitters seen directly), so Candela's
+//! depth is `max_depth − 1`, and `−1` (unlimited) becomes
+//! [`UNLIMITED_DEPTH`] (Russian roulette ends paths long before).
+
+use super::doc::{elements, Doc, XNode};
+use super::transform::to_world;
+use super::values::{float, integer, string};
+use super::Builder;
+use crate::desc::{CameraDesc, Projection};
+use crate::error::{ErrorKind, LoadError};
+use glam::{Mat4, Vec3};
+
+/// Candela's depth for Mitsuba's unlimited `max_depth = -1`.
+pub(crate) const UNLIMITED_DEPTH: u32 = 1024;
+
+/// Mitsuba's default film size.
+const DEFAULT_FILM: (u32, u32) = (768, 576);
+
+/// An `<integrator>`: `path` (and its relatives) give the depth.
+pub(super) fn integrator(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), LoadError> {
+    let kind = doc.plugin_type(node)?;
+    let depth = match kind.as_str() {
+        "path" | "volpath" | "volpathmis" | "prb" | "prb_basic" => {
+            integer(doc, node, "max_depth", -1)?
+        }
+        "direct" => 2,
+        _ => {
+            b.warn(
+                doc,
+                node,
+                format!("integrator \"{kind}\" rendered by the path tracer"),
+            )?;
+            integer(doc, node, "max_depth", -1)?
+        }
+    };
+    b.hints.max_depth = Some(match depth {
+        -1 => UNLIMITED_DEPTH,
+        d if d >= 1 => u32::try_from(d - 1)
+            .unwrap_or(UNLIMITED_DEPTH)
+            .min(UNLIMITED_DEPTH),
+        d => {
+            return Err(doc.err(
+                node,
+                ErrorKind::BadValue,
+                format!("max_depth {d} (expected -1 or at least 1)"),
+            ))
+        }
+    });
+    Ok(())
+}
+
+/// A `<sensor>`: `perspective` or `thinlens`.
+pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), LoadError> {
+    let kind = doc.plugin_type(node)?;
+    if kind != "perspective" && kind != "thinlens" {
+        if matches!(
+            kind.as_str(),
+            "orthographic" | "radiancemeter" | "irradiancemeter" | "batch"
+        ) {
+            return b.warn(
+                doc,
+                node,
+                format!("sensor \"{kind}\" is not supported (skipped)"),
+            );
+        }
+        return Err(doc.err(
+            node,
+            ErrorKind::BadValue,
+            format!("unknown sensor type \"{kind}\""),
+        ));
+    }
+    let film = film(b, doc, node)?;
+    sampler(b, doc, node)?;
+    let (xfov_deg, yfov_deg) = fields_of_view(doc, node, film)?;
+    let projection = if kind == "thinlens" {
+        let aperture_radius = float(doc, node, "aperture_radius", f32::NAN)?;
+        let focus_distance = float(doc, node, "focus_distance", f32::NAN)?;
+        if !(aperture_radius >= 0.0 && focus_distance > 0.0) {
+            return Err(doc.err(
+                node,
+                ErrorKind::DegenerateCamera,
+                "a thinlens needs aperture_radius >= 0 and focus_distance > 0",
+            ));
+        }
+        Projection::ThinLens {
+            xfov_deg,
+            yfov_deg,
+            aperture_radius,
+            focus_distance,
+        }
+    } else {
+        Projection::Perspective { xfov_deg, yfov_deg }
+    };
+    let world_from_camera = to_world(doc, node)? * Mat4::from_scale(Vec3::new(-1.0, 1.0, -1.0));
+    if world_from_camera.determinant().abs().partial_cmp(&1e-12)
+        != Some(std::cmp::Ordering::Greater)
+    {
+        return Err(doc.err(
+            node,
+            ErrorKind::DegenerateCamera,
+            "to_world is not invertible",
+        ));
+    }
+    let near = float(doc, node, "near_clip", 0.01)?;
+    let far = float(doc, node, "far_clip", 10_000.0)?;
+    if !(near > 0.0 && far > near) {
+        return Err(doc.err(
+            node,
+            ErrorKind::DegenerateCamera,
+            format!("clip range [{near}, {far}] is empty"),
+        ));
+    }
+    if b.scene.cameras.is_empty() {
+        b.hints.file_camera = true;
+        b.hints.resolution = Some(film);
+    }
+    b.scene.cameras.push(CameraDesc {
+        name: doc.attr(node, "id")?.unwrap_or(kind),
+        world_from_camera,
+        projection,
+        znear: Some(near),
+        zfar: Some(far),
+        loc: doc.loc(node),
+    });
+    Ok(())
+}
+
+/// Horizontal and vertical fields of view (degrees) from `fov` along
+/// `fov_axis` (x, y, diagonal, smaller, larger) for a `w` × `h` film; a
+/// `focal_length` ("50mm", 35 mm film, 36 mm wide) when there is no `fov`.
+fn fields_of_view(doc: &Doc, node: XNode, (w, h): (u32, u32)) -> Result<(f32, f32), LoadError> {
+    let (w, h) = (w as f32, h as f32);
+    let (fov, axis) = match doc.prop(node, "fov")? {
+        Some(_) => (
+            float(doc, node, "fov", 0.0)?,
+            string(doc, node, "fov_axis")?.unwrap_or_else(|| "x".into()),
+        ),
+        None => {
+            let f = string(doc, node, "focal_length")?.unwrap_or_else(|| "50mm".into());
+            let mm: f32 = f.trim().trim_end_matches("mm").parse().map_err(|_| {
+                doc.err(
+                    node,
+                    ErrorKind::BadNumber,
+                    format!("focal_length \"{f}\" is not like \"50mm\""),
+                )
+            })?;
+            (2.0 * (18.0 / mm).atan().to_degrees(), "x".into())
+        }
+    };
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(doc.err(
+            node,
+            ErrorKind::DegenerateCamera,
+            format!("field of view {fov} is not in (0, 180)"),
+        ));
+    }
+    let t = (0.5 * fov.to_radians()).tan();
+    let (tx, ty) = match axis.as_str() {
+        "x" => (t, t * h / w),
+        "y" => (t * w / h, t),
+        "diagonal" => {
+            let d = (w * w + h * h).sqrt();
+            (t * w / d, t * h / d)
+        }
+        "smaller" if w <= h => (t, t * h / w),
+        "smaller" => (t * w / h, t),
+        "larger" if w >= h => (t, t * h / w),
+        "larger" => (t * w / h, t),
+        other => {
+            return Err(doc.err(
+                node,
+                ErrorKind::BadValue,
+                format!(
+                    "unknown fov_axis \"{other}\" (expected x, y, diagonal, smaller or larger)"
+                ),
+            ))
+        }
+    };
+    Ok((2.0 * tx.atan().to_degrees(), 2.0 * ty.atan().to_degrees()))
+}
+
+/// The sensor's `<film>` size (Mitsuba's default without one).
+fn film(b: &mut Builder, doc: &Doc, sensor: XNode) -> Result<(u32, u32), LoadError> {
+    let Some(film) = elements(sensor).find(|c| c.tag_name().name() == "film") else {
+        return Ok(DEFAULT_FILM);
+    };
+    let w = integer(doc, film, "width", DEFAULT_FILM.0 as i64)?;
+    let h = integer(doc, film, "height", DEFAULT_FILM.1 as i64)?;
+    let ok = |v: i64| (1..=1 << 16).contains(&v);
+    if !(ok(w) && ok(h)) {
+        return Err(doc.err(
+            film,
+            ErrorKind::BadValue,
+            format!("film size {w}x{h} is not in 1..=65536"),
+        ));
+    }
+    if doc.prop(film, "crop_width")?.is_some() || doc.prop(film, "crop_offset_x")?.is_some() {
+        b.warn(
+            doc,
+            film,
+            "film cropping is not supported (the whole film is rendered)",
+        )?;
+    }
+    Ok((w as u32, h as u32))
+}
+
+/// The sensor's `<sampler>` sample count.
+fn sampler(b: &mut Builder, doc: &Doc, sensor: XNode) -> Result<(), LoadError> {
+    let Some(s) = elements(sensor).find(|c| c.tag_name().name() == "sampler") else {
+        return Ok(());
+    };
+    let n = integer(doc, s, "sample_count", 4)?;
+    if !(1..=1 << 24).contains(&n) {
+        return Err(doc.err(
+            s,
+            ErrorKind::BadValue,
+            format!("sample_count {n} is not in 1..=16777216"),
+        ));
+    }
+    if b.scene.cameras.is_empty() {
+        b.hints.spp = Some(n as u32);
+    }
+    Ok(())
+}

@@ -1,0 +1,283 @@
+//! Shapes: `obj` and `ply` files, `rectangle`, `cube`, `disk`
+//! (tessellated), `sphere` (analytic), and `shapegroup` + `instance` (each
+//! mesh stored once, drawn by one [`InstanceDesc`] per instance). A
+//! shape's `to_world` becomes its instance transform; a sphere's is applied
+//! to its centre and radius (so it must scale uniformly).
+
+use super::doc::{elements, Doc, XNode};
+use super::emitters::area_radiance;
+use super::transform::to_world;
+use super::values::{boolean, float, point};
+use super::{tessellate, Builder};
+use crate::desc::{InstanceDesc, MaterialDesc, SphereDesc};
+use crate::error::{ErrorKind, LoadError};
+use glam::{Mat4, Vec3};
+
+/// A shape of a group, in the group's space.
+#[derive(Clone, Debug)]
+pub(super) enum GroupItem {
+    Mesh { mesh: usize, transform: Mat4 },
+    Sphere(SphereDesc),
+}
+
+impl Builder {
+    /// A `<shape>`; inside a shape group its parts go to `group` instead of
+    /// the world.
+    pub(super) fn shape(
+        &mut self,
+        doc: &Doc,
+        node: XNode,
+        group: Option<&mut Vec<GroupItem>>,
+    ) -> Result<(), LoadError> {
+        let kind = doc.plugin_type(node)?;
+        let name = doc.attr(node, "id")?.unwrap_or_else(|| kind.clone());
+        let loc = doc.loc(node);
+        let mut mesh = match kind.as_str() {
+            "obj" | "ply" => {
+                let path = self.existing_file(doc, node)?;
+                let mut m = if kind == "obj" {
+                    crate::obj::read_obj_mesh(&path, &mut self.warnings)?
+                } else {
+                    crate::ply::read_ply_mesh(&path, &mut self.warnings)?
+                };
+                if boolean(doc, node, "face_normals", false)? {
+                    m.normals.clear();
+                    m.normal_indices.clear();
+                }
+                m.name = name.clone();
+                m.loc = loc;
+                m
+            }
+            "rectangle" => tessellate::rectangle(name.clone(), loc),
+            "cube" => tessellate::cube(name.clone(), loc),
+            "disk" => tessellate::disk(name.clone(), loc),
+            "sphere" => return self.sphere(doc, node, name, group),
+            "shapegroup" => return self.shape_group(doc, node, group.is_some()),
+            "instance" => return self.instance(doc, node, group.is_some()),
+            "serialized" | "cylinder" | "bsplinecurve" | "linearcurve" | "sdfgrid"
+            | "ellipsoids" | "ellipsoidsmesh" => {
+                return self.warn(
+                    doc,
+                    node,
+                    format!("shape type \"{kind}\" is not supported (skipped)"),
+                )
+            }
+            other => {
+                return Err(doc.err(
+                    node,
+                    ErrorKind::BadValue,
+                    format!("unknown shape type \"{other}\""),
+                ))
+            }
+        };
+        if boolean(doc, node, "flip_normals", false)? {
+            tessellate::flip(&mut mesh);
+        }
+        let transform = checked_transform(doc, node)?;
+        mesh.material = self.shape_material(doc, node)?;
+        self.scene.meshes.push(mesh);
+        let index = self.scene.meshes.len() - 1;
+        match group {
+            Some(g) => g.push(GroupItem::Mesh {
+                mesh: index,
+                transform,
+            }),
+            None => self.scene.instances.push(InstanceDesc {
+                mesh: index,
+                world_from_object: transform,
+                material: None,
+                loc,
+            }),
+        }
+        Ok(())
+    }
+
+    fn sphere(
+        &mut self,
+        doc: &Doc,
+        node: XNode,
+        name: String,
+        group: Option<&mut Vec<GroupItem>>,
+    ) -> Result<(), LoadError> {
+        let center = point(doc, node, "center")?.unwrap_or(Vec3::ZERO);
+        let radius = float(doc, node, "radius", 1.0)?;
+        if radius <= 0.0 {
+            return Err(doc.err(
+                node,
+                ErrorKind::BadValue,
+                format!("sphere radius {radius} is not positive"),
+            ));
+        }
+        if boolean(doc, node, "flip_normals", false)? {
+            self.warn(
+                doc,
+                node,
+                "flip_normals on a sphere is not supported (ignored)",
+            )?;
+        }
+        let transform = checked_transform(doc, node)?;
+        let Some((center, radius)) = place_sphere(transform, center, radius) else {
+            return Err(doc.err(
+                node,
+                ErrorKind::BadValue,
+                "a sphere's to_world must scale uniformly",
+            ));
+        };
+        let sphere = SphereDesc {
+            name,
+            center,
+            radius,
+            material: self.shape_material(doc, node)?,
+            loc: doc.loc(node),
+        };
+        match group {
+            Some(g) => g.push(GroupItem::Sphere(sphere)),
+            None => self.scene.spheres.push(sphere),
+        }
+        Ok(())
+    }
+
+    fn shape_group(&mut self, doc: &Doc, node: XNode, nested: bool) -> Result<(), LoadError> {
+        if nested {
+            return Err(doc.err(node, ErrorKind::BadValue, "shape groups cannot be nested"));
+        }
+        let id = doc.required(node, "id")?;
+        let mut items = Vec::new();
+        for c in elements(node) {
+            if c.tag_name().name() == "shape" {
+                self.shape(doc, c, Some(&mut items))?;
+            } else {
+                self.warn(
+                    doc,
+                    c,
+                    "only <shape> elements belong in a shape group (ignored)",
+                )?;
+            }
+        }
+        self.groups.insert(id, items);
+        Ok(())
+    }
+
+    fn instance(&mut self, doc: &Doc, node: XNode, nested: bool) -> Result<(), LoadError> {
+        if nested {
+            return Err(doc.err(
+                node,
+                ErrorKind::BadValue,
+                "instances cannot be part of a shape group",
+            ));
+        }
+        let Some(r) = elements(node).find(|c| c.tag_name().name() == "ref") else {
+            return Err(doc.err(
+                node,
+                ErrorKind::MissingElement,
+                "an instance needs a <ref id> to a shape group",
+            ));
+        };
+        let id = doc.required(r, "id")?;
+        let Some(items) = self.groups.get(&id).cloned() else {
+            return Err(doc.err(
+                r,
+                ErrorKind::MissingReference,
+                format!("no shape group with id \"{id}\""),
+            ));
+        };
+        let transform = checked_transform(doc, node)?;
+        for item in items {
+            match item {
+                GroupItem::Mesh {
+                    mesh,
+                    transform: local,
+                } => self.scene.instances.push(InstanceDesc {
+                    mesh,
+                    world_from_object: transform * local,
+                    material: None,
+                    loc: doc.loc(node),
+                }),
+                GroupItem::Sphere(s) => {
+                    let Some((center, radius)) = place_sphere(transform, s.center, s.radius) else {
+                        return Err(doc.err(
+                            node,
+                            ErrorKind::BadValue,
+                            "an instance of a sphere must scale uniformly",
+                        ));
+                    };
+                    self.scene.spheres.push(SphereDesc {
+                        center,
+                        radius,
+                        loc: doc.loc(node),
+                        ..s
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The material of a shape: its `<bsdf>` or `<ref>` (default grey
+    /// diffuse), plus the radiance of its area `<emitter>`.
+    fn shape_material(&mut self, doc: &Doc, node: XNode) -> Result<usize, LoadError> {
+        let (mut inline, mut named, mut emission) = (None, None, None);
+        for c in elements(node) {
+            match c.tag_name().name() {
+                "bsdf" => inline = Some(self.bsdf(doc, c)?),
+                "ref" => {
+                    let id = doc.required(c, "id")?;
+                    named = Some((self.named_bsdf(doc, c, &id)?, id));
+                }
+                "emitter" => emission = Some(area_radiance(self, doc, c)?),
+                _ => {}
+            }
+        }
+        if emission.is_none() {
+            if let Some((m, id)) = &named {
+                if let Some(&i) = self.bsdf_materials.get(id) {
+                    return Ok(i);
+                }
+                let i = self.push_material(m.clone());
+                self.bsdf_materials.insert(id.clone(), i);
+                return Ok(i);
+            }
+        }
+        let material = match inline.or(named.map(|(m, _)| m)) {
+            Some(m) => m,
+            None if emission.is_none() => {
+                if let Some(i) = self.default_material {
+                    return Ok(i);
+                }
+                let i = self.push_material(MaterialDesc::default_grey());
+                self.default_material = Some(i);
+                return Ok(i);
+            }
+            None => MaterialDesc::default_grey(),
+        };
+        Ok(self.push_material(MaterialDesc {
+            emission,
+            ..material
+        }))
+    }
+
+    fn push_material(&mut self, m: MaterialDesc) -> usize {
+        self.scene.materials.push(m);
+        self.scene.materials.len() - 1
+    }
+}
+
+/// The shape's `to_world`, which must be invertible.
+fn checked_transform(doc: &Doc, node: XNode) -> Result<Mat4, LoadError> {
+    let m = to_world(doc, node)?;
+    let det = m.determinant();
+    if !(det.is_finite() && det.abs() > 1e-12) {
+        return Err(doc.err(node, ErrorKind::BadValue, "to_world is not invertible"));
+    }
+    Ok(m)
+}
+
+/// A sphere's centre and radius after `m`, or `None` if `m` does not scale
+/// uniformly (within 0.1 %).
+fn place_sphere(m: Mat4, center: Vec3, radius: f32) -> Option<(Vec3, f32)> {
+    let scales = [m.x_axis, m.y_axis, m.z_axis].map(|c| c.truncate().length());
+    let mean = (scales[0] + scales[1] + scales[2]) / 3.0;
+    let uniform = scales.iter().all(|s| (s - mean).abs() <= 1e-3 * mean)
+        && m.x_axis.truncate().dot(m.y_axis.truncate()).abs() <= 1e-3 * mean * mean;
+    uniform.then(|| (m.transform_point3(center), radius * mean))
+}

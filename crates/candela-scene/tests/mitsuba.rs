@@ -1,0 +1,310 @@
+//! The Mitsuba 3 XML loader: the shared research scenes (golden counts,
+//! lights, cameras), a hand-written base file that uses one of everything
+//! (`tests/mitsuba/base.xml` with `part.xml` included), caller overrides of
+//! `<default>`s, the camera's handedness, and mutated files (never a panic).
+//! Malformed files are in `tests/malformed/` (`*-mitsuba-*.xml`).
+
+use candela_scene::{
+    load, BsdfDesc, EnvironmentDesc, LightKind, LoadOptions, Loaded, MicrofacetModel, Projection,
+};
+use glam::Vec3;
+use proptest::prelude::*;
+use std::path::{Path, PathBuf};
+
+fn shared(rel: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared")
+        .join(rel)
+}
+
+fn base_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/mitsuba")
+}
+
+fn strict() -> LoadOptions {
+    LoadOptions {
+        strict: true,
+        ..LoadOptions::default()
+    }
+}
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    (a - b).abs().max_element() <= 1e-4 * (1.0 + b.abs().max_element())
+}
+
+/// The radiance of the scene's only emissive material.
+fn lamp(l: &Loaded) -> Vec3 {
+    let lamps: Vec<Vec3> = l
+        .scene
+        .materials
+        .iter()
+        .filter_map(|m| m.emission)
+        .collect();
+    assert_eq!(lamps.len(), 1, "{lamps:?}");
+    lamps[0]
+}
+
+fn eye(l: &Loaded) -> Vec3 {
+    l.scene.cameras[0]
+        .world_from_camera
+        .transform_point3(Vec3::ZERO)
+}
+
+#[test]
+fn the_mitsuba_cornell_box_loads() {
+    let l = load(&shared("scenes/formats/mitsuba/cbox/cbox.xml"), &strict()).unwrap();
+    let s = &l.scene;
+    assert_eq!((s.meshes.len(), s.instances.len()), (8, 8));
+    assert_eq!(s.triangle_count(), 38);
+    // The lamp's spectrum 400:0, 500:8, 600:15.6, 700:18.4 averaged over
+    // the bands 600-700, 500-600, 400-500 nm (linear between samples).
+    assert!(
+        close(lamp(&l), Vec3::new(17.0, 11.8, 4.0)),
+        "{:?}",
+        lamp(&l)
+    );
+    assert!(close(eye(&l), Vec3::new(278.0, 273.0, -800.0)));
+    assert_eq!(l.hints.spp, Some(128));
+    assert_eq!(l.hints.resolution, Some((256, 256)));
+    assert_eq!(l.hints.max_depth, Some(5)); // Mitsuba's 6 segments
+    assert!(l.hints.file_camera);
+    let Projection::Perspective { xfov_deg, yfov_deg } = s.cameras[0].projection else {
+        panic!("{:?}", s.cameras[0].projection)
+    };
+    assert!((xfov_deg - 39.3077).abs() < 1e-3 && (yfov_deg - 39.3077).abs() < 1e-3);
+    assert!(l.report.is_empty(), "{}", l.report);
+}
+
+#[test]
+fn the_cs184_bunny_and_spheres_load() {
+    let bunny = load(&shared("bench/mitsuba/CBbunny.xml"), &strict()).unwrap();
+    assert_eq!(bunny.scene.meshes.len(), 7);
+    assert_eq!(bunny.scene.triangle_count(), 28_588);
+    assert!(close(lamp(&bunny), Vec3::splat(10.0)));
+    assert!(close(eye(&bunny), Vec3::new(0.0, -4.802_344, 0.75)));
+    let spheres = load(&shared("bench/mitsuba/CBspheres_lambertian.xml"), &strict()).unwrap();
+    let s = &spheres.scene;
+    assert_eq!(
+        (s.meshes.len(), s.triangle_count(), s.spheres.len()),
+        (6, 12, 2)
+    );
+    assert!(close(s.spheres[0].center, Vec3::new(-0.4, 0.3, 0.3)));
+    assert!((s.spheres[1].radius - 0.3).abs() < 1e-6);
+    assert!(close(lamp(&spheres), Vec3::splat(10.0)));
+    assert!(close(eye(&spheres), Vec3::new(0.0, 4.802_344, 0.75)));
+    for l in [&bunny, &spheres] {
+        assert_eq!(l.hints.spp, Some(64));
+        assert_eq!(l.hints.resolution, Some((480, 360)));
+        // max_depth -1: unlimited.
+        assert!(l.hints.max_depth.unwrap() >= 1000);
+        let (x, y) = l.scene.cameras[0].fov_deg().unwrap();
+        assert!((x - 30.676_4).abs() < 1e-3, "{x}");
+        let want_y = 2.0
+            * ((x.to_radians() / 2.0).tan() * 360.0 / 480.0)
+                .atan()
+                .to_degrees();
+        assert!((y - want_y).abs() < 1e-3, "{y} {want_y}");
+    }
+}
+
+fn base() -> Loaded {
+    load(&base_dir().join("base.xml"), &LoadOptions::default()).unwrap()
+}
+
+#[test]
+fn the_base_file_loads_every_element() {
+    let l = base();
+    let s = &l.scene;
+    // floor (2), lamp rectangle (2), cube (12, drawn twice), disk (64).
+    assert_eq!(s.meshes.len(), 4);
+    assert_eq!(s.triangle_count(), 2 + 2 + 12 + 64);
+    assert_eq!(s.instances.len(), 5);
+    assert_eq!(s.instanced_triangle_count(), 2 + 2 + 24 + 64);
+    // The ball, and the group's sphere in both instances: the second
+    // scales by 2 and then moves by +x.
+    assert_eq!(s.spheres.len(), 3);
+    assert!(close(s.spheres[2].center, Vec3::new(1.0, 1.0, 0.0)));
+    assert!((s.spheres[2].radius - 0.2).abs() < 1e-6);
+    assert!(close(s.spheres[1].center, Vec3::new(-1.0, 0.5, 0.0)));
+    assert_eq!((l.hints.spp, l.hints.max_depth), (Some(16), Some(3)));
+    assert_eq!(l.hints.resolution, Some((64, 48)));
+    let by_bsdf = |f: &dyn Fn(&BsdfDesc) -> bool| s.materials.iter().any(|m| f(&m.bsdf));
+    assert!(by_bsdf(
+        &|b| matches!(b, BsdfDesc::Glass { ior, .. } if (ior - 1.5046).abs() < 1e-6)
+    ));
+    assert!(by_bsdf(
+        &|b| matches!(b, BsdfDesc::Conductor { distribution: MicrofacetModel::Ggx, alpha, eta, .. }
+        if (*alpha - 0.2).abs() < 1e-6 && (eta.x - 0.143).abs() < 1e-3)
+    ));
+    assert!(by_bsdf(
+        &|b| matches!(b, BsdfDesc::Plastic { alpha, .. } if *alpha == 0.0)
+    ));
+    assert!(by_bsdf(
+        &|b| matches!(b, BsdfDesc::Diffuse { albedo } if close(*albedo, Vec3::splat(0.5)))
+    ));
+    assert!(close(lamp(&l), Vec3::splat(5.0)));
+    assert_eq!(
+        s.environment,
+        Some(EnvironmentDesc::Constant {
+            radiance: Vec3::splat(0.1)
+        })
+    );
+    assert!(
+        matches!(s.lights[0].kind, LightKind::Point { position, intensity }
+        if close(position, Vec3::new(1.0, 2.0, 3.0)) && close(intensity, Vec3::new(1.0, 2.0, 3.0)))
+    );
+    assert!(l.report.is_empty(), "{}", l.report);
+}
+
+#[test]
+fn transforms_compose_in_mitsubas_order() {
+    let l = base();
+    let s = &l.scene;
+    let facing = |name: &str| {
+        let i = s
+            .instances
+            .iter()
+            .find(|i| s.meshes[i.mesh].name == name)
+            .unwrap();
+        let m = &s.meshes[i.mesh];
+        let p = m.triangles[0].map(|k| {
+            i.world_from_object
+                .transform_point3(m.positions[k as usize])
+        });
+        ((p[1] - p[0]).cross(p[2] - p[0]).normalize(), p[0])
+    };
+    // The floor: scale 2, then a -90 degree turn about x: facing +y, 2 wide.
+    let (n, p) = facing("floor");
+    assert!(close(n, Vec3::Y), "{n}");
+    assert!((p.x.abs() - 2.0).abs() < 1e-5 && p.y.abs() < 1e-5, "{p}");
+    // The lamp: turned to face +y, flipped (-y), then lifted to y = 3.
+    let (n, p) = facing("lamp");
+    assert!(close(n, -Vec3::Y), "{n}");
+    assert!((p.y - 3.0).abs() < 1e-5, "{p}");
+}
+
+#[test]
+fn the_camera_is_not_mirrored() {
+    // The base camera sits at z = 5 looking toward -z with +y up: world +x
+    // must be the image's right (Candela's camera +x), -z straight ahead.
+    let c = &base().scene.cameras[0];
+    let m = c.world_from_camera;
+    assert!(close(m.transform_vector3(Vec3::X), Vec3::X));
+    assert!(close(m.transform_vector3(Vec3::Y), Vec3::Y));
+    assert!(close(m.transform_vector3(-Vec3::Z), -Vec3::Z));
+    assert!(m.determinant() > 0.0);
+}
+
+#[test]
+fn caller_defines_override_the_files_defaults() {
+    let opts = LoadOptions {
+        defines: vec![("spp".into(), "3".into()), ("depth".into(), "-1".into())],
+        ..LoadOptions::default()
+    };
+    let l = load(&base_dir().join("base.xml"), &opts).unwrap();
+    assert_eq!(l.hints.spp, Some(3));
+    assert!(l.hints.max_depth.unwrap() >= 1000);
+}
+
+#[test]
+fn unsupported_plugins_warn_once_or_fail_in_strict_mode() {
+    let dir = std::env::temp_dir().join(format!("candela-mitsuba-warn-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("warn.xml");
+    let body = r#"<scene version="3.0.0">
+    <shape type="cube"><bsdf type="principled"/></shape>
+    <shape type="cube"><bsdf type="principled"/></shape>
+    <shape type="cylinder"/>
+</scene>"#;
+    std::fs::write(&path, body).unwrap();
+    let l = load(&path, &LoadOptions::default()).unwrap();
+    assert_eq!(l.report.len(), 2, "{}", l.report);
+    assert_eq!(l.report.warnings[0].count, 2, "{}", l.report);
+    assert!(l.report.mentions("cylinder"));
+    let err = load(&path, &strict()).unwrap_err();
+    assert_eq!(err.kind, candela_scene::ErrorKind::Unsupported, "{err}");
+}
+
+/// A mutation of the base file: replace, cut, or insert a token that
+/// matters to the loader.
+#[derive(Clone, Debug)]
+enum Mutation {
+    Replace(usize, u8),
+    Truncate(usize),
+    Insert(usize, &'static str),
+}
+
+const TOKENS: &[&str] = &[
+    "<",
+    ">",
+    "\"",
+    "$",
+    "$spp",
+    "nan",
+    "-1",
+    "0",
+    "1e40",
+    "=",
+    "/",
+    " ",
+    ",",
+    "<shape type=\"cube\">",
+    "<ref id=\"pair\"/>",
+    "<include filename=\"base.xml\"/>",
+];
+
+fn mutation() -> impl Strategy<Value = Mutation> {
+    prop_oneof![
+        (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Mutation::Replace(i, b)),
+        any::<usize>().prop_map(Mutation::Truncate),
+        (any::<usize>(), proptest::sample::select(TOKENS))
+            .prop_map(|(i, t)| Mutation::Insert(i, t)),
+    ]
+}
+
+fn mutate(mut bytes: Vec<u8>, mutations: &[Mutation]) -> Vec<u8> {
+    for m in mutations {
+        let n = bytes.len().max(1);
+        match m {
+            Mutation::Replace(i, b) => {
+                if let Some(x) = bytes.get_mut(i % n) {
+                    *x = *b;
+                }
+            }
+            Mutation::Truncate(i) => bytes.truncate(i % n),
+            Mutation::Insert(i, t) => {
+                let at = (i % n).min(bytes.len());
+                bytes.splice(at..at, t.bytes());
+            }
+        }
+    }
+    bytes
+}
+
+/// A scratch copy of the base files, the mutated scene written over `base.xml`.
+fn scratch() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("candela-mitsuba-fuzz-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in ["quad.obj", "part.xml"] {
+        std::fs::copy(base_dir().join(f), dir.join(f)).unwrap();
+    }
+    dir
+}
+
+fn loads_or_fails(path: &Path, bytes: &[u8]) {
+    std::fs::write(path, bytes).unwrap();
+    if let Err(e) = load(path, &LoadOptions::default()) {
+        assert!(!e.to_string().contains('\n'), "{e}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn mutated_scenes_never_panic(ms in proptest::collection::vec(mutation(), 1..4)) {
+        let dir = scratch();
+        let text = std::fs::read(base_dir().join("base.xml")).unwrap();
+        loads_or_fails(&dir.join("base.xml"), &mutate(text, &ms));
+    }
+}
