@@ -75,6 +75,16 @@ def defines(items):
     return out
 
 
+def cpu_model():
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
 def reference(args):
     mi.set_variant(args.variant)
     if args.threads:
@@ -114,7 +124,7 @@ def reference(args):
         "layers": "R,G,B: mean; stderr.R/G/B: standard error of the mean from the passes' spread",
         "seconds": round(seconds, 1),
         "threads": dr.thread_count(),
-        "machine": platform.processor() or platform.machine(),
+        "machine": cpu_model(),
         "date": datetime.date.today().isoformat(),
     }
     out.with_suffix(".json").write_text(json.dumps(sidecar, indent=2) + "\n")
