@@ -151,31 +151,18 @@ def blocks(img, block=BLOCK):
     return t.mean(axis=(1, 3))
 
 
-def block_errors(test, test_se, ref, ref_se, mask=None):
+def block_errors(test, test_se, ref, ref_se):
     """Mean relative block error, the mean noise alone would give, and the
     largest |z| over blocks and channels."""
     bt, br = blocks(test), blocks(ref)
     # Variance of a block mean: sum of its pixels' se^2 over n^2.
     var = (blocks(test_se**2) + blocks(ref_se**2)) / BLOCK**2
     keep = br > 1e-3 * max(br.max(), 1e-12)
-    if mask is not None:
-        keep &= mask[..., None]
     rel = np.abs(bt - br)[keep] / br[keep]
     # E|N(0, s)| = s * sqrt(2 / pi): the error of an unbiased pair.
     floor = (np.sqrt(var[keep]) * math.sqrt(2 / math.pi)) / br[keep]
     z = np.abs(bt - br)[keep] / np.sqrt(np.maximum(var[keep], 1e-30))
     return rel.mean(), floor.mean(), z.max(), keep.sum()
-
-
-def region_mask(shape, rect):
-    """Blocks whose every pixel lies in rect (x0, y0, x1, y1)."""
-    by, bx = shape[0] // BLOCK, shape[1] // BLOCK
-    x0, y0, x1, y1 = rect
-    ys = np.arange(by) * BLOCK
-    xs = np.arange(bx) * BLOCK
-    inside_y = (ys >= y0 - BLOCK + 1) & (ys + BLOCK <= y1 + BLOCK - 1)
-    inside_x = (xs >= x0 - BLOCK + 1) & (xs + BLOCK <= x1 + BLOCK - 1)
-    return inside_y[:, None] & inside_x[None, :]
 
 
 def pixel_errors(test, ref, rect):
