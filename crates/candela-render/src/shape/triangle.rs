@@ -16,12 +16,17 @@
 //! within its rounding-error bound `δt` (a true `t` that may be `<= 0`).
 //! That bound grows with the triangle's extent as seen from the origin, so a
 //! ray starting a few microns above a large ground quad (`δt` of a 6-unit
-//! quad at 45° is about 5e-5) was wrongly rejected. Hits with `|t| <= δt`
+//! quad at 45° is about 5e-5) was wrongly rejected. Hits with `0 < t <= δt`
 //! are therefore decided again in f64 ([`near_hit_t`]): the sign of `t` is
 //! the sign of `n·(v0 - o) / n·d`, which f64 gets right with its own error
 //! bound some 1e9 times tighter. A hit is accepted only when its true `t`
 //! is provably positive, and spawned rays start strictly on their side of
 //! the surface ([`super::offset_ray_origin`]), so they still never re-hit it.
+//! A `t` that rounds to `<= 0` is rejected before the bound is computed:
+//! that early exit is what keeps shadow and bounce rays (whose leaves are
+//! mostly behind them) fast, at the price that an origin closer to a plane
+//! than the f32 rounding of `t` (about 1e-4 on a 1000-unit triangle) may
+//! miss it.
 
 use super::surface::{gamma, SurfacePoint};
 use glam::{DVec3, Vec3};
@@ -119,9 +124,12 @@ pub fn intersect_triangle(ray: &TriangleRay, v: &[Vec3; 3], t_max: f32) -> Optio
     }
     let z = Vec3::new(p[0].z, p[1].z, p[2].z) * s.z;
     let t_scaled = e0 * z.x + e1 * z.y + e2 * z.z;
-    // Range test without dividing: t = t_scaled / det must be below t_max.
-    // (A t just below zero may still be a hit: see the module docs.)
-    if det < 0.0 && t_scaled < t_max * det || det > 0.0 && t_scaled > t_max * det {
+    // Range test without dividing: t = t_scaled / det must lie in (0, t_max).
+    // Rejecting t <= 0 here keeps the common case (triangles behind the
+    // origin) cheap; a positive t within its error bound is decided below.
+    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det)
+        || det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det)
+    {
         return None;
     }
     let inv_det = 1.0 / det;

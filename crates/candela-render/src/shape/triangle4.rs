@@ -5,7 +5,7 @@
 //! order, so results (and watertightness) are bit-identical to
 //! [`super::intersect_triangle`]; the `t` error bound, needed only for lanes
 //! that pass every other test, is computed for all lanes once any does, and
-//! lanes whose `t` lies within it of zero are decided by the same f64 test
+//! lanes whose positive `t` lies within it are decided by the same f64 test
 //! ([`near_hit_t`]), one lane at a time (rare: origins within microns).
 
 use super::surface::gamma;
@@ -112,7 +112,9 @@ fn hit_lanes(ray: &TriangleRay4, p: &TrianglePacket, lanes: u32, t_max: f32) -> 
     let t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
     let inv_det = F32x4::splat(1.0) / det;
     let t = t_scaled * inv_det;
-    valid &= t.lt_mask(F32x4::splat(t_max));
+    // Lanes behind the origin leave at once (most lanes of a shadow or
+    // bounce ray's leaf): only t > 0 pays for the error bound below.
+    valid &= t.lt_mask(F32x4::splat(t_max)) & zero.lt_mask(t);
     if valid == 0 {
         return None;
     }
@@ -131,8 +133,7 @@ fn hit_lanes(ray: &TriangleRay4, p: &TrianglePacket, lanes: u32, t_max: f32) -> 
         * (g3 * max_e * max_z + delta_e * max_z + delta_z * max_e)
         * inv_det.abs();
     let sure = valid & bound.lt_mask(t);
-    let near =
-        valid & !sure & t.abs().le_mask(bound) & inv_det.abs().lt_mask(F32x4::splat(f32::INFINITY));
+    let near = valid & !sure & inv_det.abs().lt_mask(F32x4::splat(f32::INFINITY));
     let (valid, t) = if near == 0 {
         (sure, t)
     } else {
