@@ -1,11 +1,6 @@
 //! Emitting surfaces: mesh triangles, spheres and CGL rectangles, each
 //! one-sided with constant radiance.
-//!
-//! Triangles and rectangles are sampled uniformly in the solid angle they
-//! subtend when [`super::solid_angle`]'s rule allows, by area otherwise;
-//! spheres seen from outside uniformly in their cone.
 
-use super::solid_angle::SolidAngleSampler;
 use super::{luminance, LightSample};
 use crate::geometry::Frame;
 use crate::sampling::warp::{
@@ -80,18 +75,10 @@ impl AreaLight {
     pub(super) fn sample_li_with_area(&self, p: Vec3, u: Vec2, area: f32) -> Option<LightSample> {
         let (q, normal) = match &self.shape {
             AreaShape::Triangle { v, normal } => {
-                if let Some(s) = SolidAngleSampler::triangle(p, v, *normal) {
-                    return self.sample_solid_angle(&s, p, v[0], *normal, u);
-                }
                 let b = square_to_uniform_triangle(u);
                 (b.x * v[0] + b.y * v[1] + (1.0 - b.x - b.y) * v[2], *normal)
             }
-            AreaShape::Rect { shape, normal } => {
-                if let Some(s) = SolidAngleSampler::rectangle(p, shape, *normal) {
-                    return self.sample_solid_angle(&s, p, shape.origin, *normal, u);
-                }
-                (shape.sample(u), *normal)
-            }
+            AreaShape::Rect { shape, normal } => (shape.sample(u), *normal),
             AreaShape::Sphere { center, radius } => {
                 return self.sample_sphere(p, *center, *radius, u)
             }
@@ -112,24 +99,6 @@ impl AreaLight {
             l: self.radiance,
             distance,
             pdf: dist2 / (cos_light * area),
-        })
-    }
-
-    /// A sample of a planar light by solid angle.
-    fn sample_solid_angle(
-        &self,
-        s: &SolidAngleSampler,
-        p: Vec3,
-        plane_point: Vec3,
-        normal: Vec3,
-        u: Vec2,
-    ) -> Option<LightSample> {
-        let (wi, distance) = s.sample(p, plane_point, normal, u)?;
-        Some(LightSample {
-            wi,
-            l: self.radiance,
-            distance,
-            pdf: s.pdf(),
         })
     }
 
@@ -167,13 +136,8 @@ impl AreaLight {
 
     /// [`AreaLight::pdf_li`] given `area = self.shape.area()`.
     pub(super) fn pdf_li_with_area(&self, p: Vec3, wi: Vec3, p_light: Vec3, area: f32) -> f32 {
-        let (normal, solid_angle) = match &self.shape {
-            AreaShape::Triangle { v, normal } => {
-                (*normal, SolidAngleSampler::triangle(p, v, *normal))
-            }
-            AreaShape::Rect { shape, normal } => {
-                (*normal, SolidAngleSampler::rectangle(p, shape, *normal))
-            }
+        let normal = match &self.shape {
+            AreaShape::Triangle { normal, .. } | AreaShape::Rect { normal, .. } => *normal,
             AreaShape::Sphere { center, radius } => {
                 let to_center = *center - p;
                 let dc2 = to_center.length_squared();
@@ -189,10 +153,7 @@ impl AreaLight {
         if cos_light <= 0.0 {
             return 0.0;
         }
-        match solid_angle {
-            Some(s) => s.pdf(),
-            None => (p_light - p).length_squared() / (cos_light * area),
-        }
+        (p_light - p).length_squared() / (cos_light * area)
     }
 
     pub(super) fn power(&self) -> f32 {

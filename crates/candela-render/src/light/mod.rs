@@ -9,11 +9,10 @@
 //! - [`Light::pdf_li`]: that density for a direction found some other way
 //!   (a BSDF sample that happened to hit the light).
 //!
-//! Emissive triangles and CGL area rectangles are sampled uniformly in the
-//! solid angle they subtend when [`solid_angle`]'s rule allows, else by area
-//! converted to solid angle (`pdf_A · d² / |cos θ_l|`); spheres seen from
-//! outside uniformly in the cone they subtend. Emitters are one-sided: they
-//! emit on the side of their normal.
+//! Emissive geometry (mesh triangles, spheres) and CGL area rectangles are
+//! sampled by area and converted to solid angle (`pdf_A · d² / |cos θ_l|`),
+//! except spheres seen from outside, sampled uniformly in the cone they
+//! subtend. Emitters are one-sided: they emit on the side of their normal.
 //!
 //! Lights at infinity that rays can escape to (the ambient sky, the
 //! environment map) also answer [`Light::le`], the radiance an escaping ray
@@ -25,11 +24,8 @@ mod envmap;
 #[cfg(test)]
 mod envmap_tests;
 mod infinite;
-#[cfg(test)]
-mod mis_tests;
 mod set;
 mod sky;
-pub mod solid_angle;
 #[cfg(test)]
 mod tests;
 

@@ -98,15 +98,11 @@ fn triangle_light_sampling_matches_its_pdf() {
         shape: AreaShape::Triangle { v, normal: n },
         ..light
     };
-    let centroid = (v[0] + v[1] + v[2]) / 3.0;
     check_area_light(
         "triangle",
         light,
-        // Below it, off to the side where it is seen at a slant, and so
-        // near that it fills most of the hemisphere (all by solid angle;
-        // the area branch of the rule, for solid angles too small for this
-        // grid, is checked by `mis_tests` and by the parallelogram test).
-        &[Vec3::ZERO, Vec3::new(0.9, 0.6, -0.4), centroid + 0.02 * n],
+        // Below it, and off to the side where it is seen at a slant.
+        &[Vec3::ZERO, Vec3::new(0.9, 0.6, -0.4)],
     );
 }
 
@@ -123,37 +119,7 @@ fn rectangle_light_sampling_matches_its_pdf() {
         },
         radiance: Vec3::ONE,
     };
-    check_area_light(
-        "rectangle",
-        light,
-        &[
-            Vec3::ZERO,
-            Vec3::new(-1.0, 0.5, 0.3),
-            Vec3::new(0.0, 0.98, 0.0),
-        ],
-    );
-}
-
-/// A parallelogram that is not a rectangle is sampled by area at any
-/// distance (the spherical rectangle needs perpendicular edges).
-#[test]
-fn parallelogram_light_sampling_matches_its_pdf() {
-    let light = AreaLight {
-        shape: AreaShape::Rect {
-            shape: Parallelogram {
-                origin: Vec3::new(-0.3, 1.0, -0.4),
-                edge0: Vec3::new(0.6, 0.0, 0.0),
-                edge1: Vec3::new(0.3, 0.0, 0.8),
-            },
-            normal: -Vec3::Y,
-        },
-        radiance: Vec3::ONE,
-    };
-    check_area_light(
-        "parallelogram",
-        light,
-        &[Vec3::ZERO, Vec3::new(0.1, 0.9, 0.1)],
-    );
+    check_area_light("rectangle", light, &[Vec3::ZERO, Vec3::new(-1.0, 0.5, 0.3)]);
 }
 
 #[test]
