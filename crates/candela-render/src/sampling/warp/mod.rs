@@ -8,17 +8,10 @@
 //! directions back to sample space.
 //!
 //! Directions are in a local frame whose +Z is the pole (the normal for
-//! hemispheres, the axis for cones), except for the solid angles of
-//! triangles and rectangles seen from a point ([`SphericalTriangle`],
-//! [`SphericalRectangle`]), which are set up from world-space geometry and
-//! return world-space directions.
+//! hemispheres, the axis for cones).
 
 mod planar;
-#[cfg(test)]
-mod solid_angle_tests;
 mod spherical;
-mod spherical_rectangle;
-mod spherical_triangle;
 #[cfg(test)]
 mod tests;
 
@@ -32,5 +25,3 @@ pub use spherical::{
     uniform_cone_pdf, uniform_cone_to_square, uniform_hemisphere_pdf, uniform_hemisphere_to_square,
     uniform_sphere_pdf, uniform_sphere_to_square,
 };
-pub use spherical_rectangle::SphericalRectangle;
-pub use spherical_triangle::SphericalTriangle;
