@@ -76,7 +76,11 @@ pub fn run(args: &LoadArgs) -> Result<()> {
     println!(
         "triangles:   {tris} in {} meshes, {} vertices",
         scene.meshes.len(),
-        scene.meshes.iter().map(|m| m.positions.len()).sum::<usize>()
+        scene
+            .meshes
+            .iter()
+            .map(|m| m.positions.len())
+            .sum::<usize>()
     );
     println!(
         "load:        {best:.3} s best of {} ({:.1} Mtriangles/s)",
