@@ -38,7 +38,7 @@ pub struct Cli {
 /// Subcommands besides rendering.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Benchmarks of the acceleration structure.
+    /// Benchmarks of the acceleration structure and of scene loading.
     #[command(subcommand)]
     Bench(crate::bench::BenchCommand),
 }

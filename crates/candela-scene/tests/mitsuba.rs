@@ -225,6 +225,37 @@ fn unsupported_plugins_warn_once_or_fail_in_strict_mode() {
     assert_eq!(err.kind, candela_scene::ErrorKind::Unsupported, "{err}");
 }
 
+#[test]
+fn a_smooth_none_conductor_takes_its_specular_reflectance() {
+    // Fresnel is 1 for "none", so Mitsuba's BSDF is the factor itself: a
+    // mirror. Elsewhere Candela's conductor has no such factor: reported.
+    let dir = std::env::temp_dir().join(format!("candela-mitsuba-mirror-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("mirror.xml");
+    let body = r#"<scene version="3.0.0">
+    <shape type="cube"><bsdf type="conductor">
+        <rgb name="specular_reflectance" value="0.95, 0.9, 0.85"/></bsdf></shape>
+    <shape type="cube"><bsdf type="roughconductor"><string name="material" value="Au"/>
+        <rgb name="specular_reflectance" value="0.5"/></bsdf></shape>
+</scene>"#;
+    std::fs::write(&path, body).unwrap();
+    let l = load(&path, &LoadOptions::default()).unwrap();
+    let BsdfDesc::Mirror { reflectance } = l.scene.materials[0].bsdf else {
+        panic!("{:?}", l.scene.materials[0].bsdf)
+    };
+    assert!(
+        close(reflectance, Vec3::new(0.95, 0.9, 0.85)),
+        "{reflectance}"
+    );
+    assert!(matches!(
+        l.scene.materials[1].bsdf,
+        BsdfDesc::Conductor { .. }
+    ));
+    assert_eq!(l.report.len(), 1, "{}", l.report);
+    assert!(l.report.mentions("specular_reflectance"), "{}", l.report);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A mutation of the base file: replace, cut, or insert a token that
 /// matters to the loader.
 #[derive(Clone, Debug)]

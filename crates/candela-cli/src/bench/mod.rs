@@ -1,8 +1,10 @@
 //! `candela bench`: replays fixed ray sets through the acceleration
 //! structure (the yardstick is Embree on the same rays) and measures how
-//! build time, memory and query rate scale with triangle count.
+//! build time, memory and query rate scale with triangle count; and times
+//! scene loading.
 
 mod files;
+mod load;
 mod replay;
 mod scaling;
 mod timing;
@@ -23,6 +25,8 @@ pub enum BenchCommand {
     Rays(RaysArgs),
     /// Build and query synthetic meshes from 10k to 2M triangles.
     Scaling(ScalingArgs),
+    /// Load a scene file repeatedly: best time, triangles, peak memory beyond the mesh.
+    Load(load::LoadArgs),
 }
 
 /// Arguments of `candela bench rays`.
@@ -101,6 +105,7 @@ pub fn run(cmd: BenchCommand) -> Result<()> {
     match cmd {
         BenchCommand::Rays(args) => replay::run(&args),
         BenchCommand::Scaling(args) => scaling::run(&args),
+        BenchCommand::Load(args) => load::run(&args),
     }
 }
 

@@ -7,7 +7,7 @@
 //! | `dielectric` | `Glass`, ior = int_ior / ext_ior (numbers or names) |
 //! | `thindielectric` | `ThinDielectric` |
 //! | `roughdielectric` | `RoughDielectric` (alpha, beckmann or ggx) |
-//! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth), `material` presets or eta/k |
+//! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth), `material` presets or eta/k; a smooth `none` with `specular_reflectance` is a `Mirror` of that reflectance |
 //! | `plastic`, `roughplastic` | `Plastic` |
 //! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the normal-map slot |
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot |
@@ -71,6 +71,28 @@ impl Builder {
             "conductor" | "roughconductor" => {
                 let (eta, k) = conductor_ior(self, doc, node)?;
                 let rough = kind == "roughconductor";
+                let scale = self.constant(doc, node, "specular_reflectance", Vec3::ONE)?;
+                // Fresnel is 1 at every angle for "none", so the BSDF is
+                // exactly a mirror of reflectance `scale`; Candela's
+                // conductor has no such factor otherwise.
+                let smooth_none = !rough && (eta, k) == (Vec3::ZERO, Vec3::ONE);
+                if scale != Vec3::ONE && smooth_none {
+                    return Ok(MaterialDesc {
+                        name,
+                        bsdf: BsdfDesc::Mirror { reflectance: scale },
+                        emission: None,
+                        textures,
+                        loc: doc.loc(node),
+                    });
+                }
+                if scale != Vec3::ONE {
+                    let p = doc.prop(node, "specular_reflectance")?.unwrap_or(node);
+                    self.warn(
+                        doc,
+                        p,
+                        "specular_reflectance is applied only to a smooth conductor of material \"none\" (ignored)",
+                    )?;
+                }
                 BsdfDesc::Conductor {
                     distribution: if rough {
                         distribution(doc, node)?
