@@ -123,7 +123,7 @@ pub fn demo_scene() -> Loaded {
 }
 
 /// Samples per pixel of the demo unless the user says otherwise.
-pub const DEMO_SPP: u32 = 32;
+pub const DEMO_SPP: u32 = 16;
 /// The demo's firefly clamp, a few times the walls' radiance: caustics off the mirror
 /// sphere are single bright samples at this sample count.
 pub const DEMO_CLAMP: f32 = 1.5;
