@@ -11,10 +11,6 @@ mod common;
 
 use candela_image::metrics::ztest::{z_test, BlockStats};
 use candela_image::RgbImage;
-use candela_render::camera::framing::CameraMode;
-use candela_render::integrator::IntegratorSettings;
-use candela_render::render::{render, RenderSettings};
-use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{load, BsdfDesc, LoadOptions, SceneDesc};
 use glam::Vec3;
 use std::collections::BTreeMap;
@@ -161,29 +157,7 @@ fn every_format_holds_the_same_geometry_light_and_materials() {
 }
 
 fn batches(desc: &SceneDesc, seed: u64) -> Vec<RgbImage> {
-    let opts = SceneOptions {
-        width: SIZE.0,
-        height: SIZE.1,
-        camera_mode: CameraMode::File,
-        ..SceneOptions::default()
-    };
-    let scene = Scene::build(desc, &opts).unwrap();
-    (0..BATCHES)
-        .map(|b| {
-            let settings = RenderSettings {
-                spp: SPP,
-                seed: seed + 1000 * b,
-                integrator: IntegratorSettings {
-                    max_depth: 4,
-                    ..Default::default()
-                },
-                ..Default::default()
-            };
-            let out = render(&scene, &settings, &|_| {}).expect("render");
-            assert_eq!(out.stats.invalid_samples, 0);
-            out.film.resolve()
-        })
-        .collect()
+    common::file_camera_batches(desc, SIZE, SPP, BATCHES, 4, seed)
 }
 
 /// Mean colour of columns `x0..x1` over all batches.

@@ -94,29 +94,7 @@ const BATCHES: u64 = 8;
 const SPP: u32 = 16;
 
 fn batches(desc: &SceneDesc, seed: u64) -> Vec<RgbImage> {
-    let opts = SceneOptions {
-        width: 64,
-        height: 48,
-        camera_mode: CameraMode::File,
-        ..SceneOptions::default()
-    };
-    let scene = Scene::build(desc, &opts).unwrap();
-    (0..BATCHES)
-        .map(|b| {
-            let settings = RenderSettings {
-                spp: SPP,
-                seed: seed + 1000 * b,
-                integrator: IntegratorSettings {
-                    max_depth: 4,
-                    ..Default::default()
-                },
-                ..Default::default()
-            };
-            let out = render(&scene, &settings, &|_| {}).expect("render");
-            assert_eq!(out.stats.invalid_samples, 0);
-            out.film.resolve()
-        })
-        .collect()
+    common::file_camera_batches(desc, (64, 48), SPP, BATCHES, 4, seed)
 }
 
 #[test]

@@ -208,3 +208,39 @@ pub fn assert_converges(label: &str, e: &Estimate, expected: f64, z: f64) {
 pub fn cs184(name: &str) -> std::path::PathBuf {
     candela_testkit::cs184_scene(name)
 }
+
+/// `batches` independent renders (seeds `seed + 1000 b`) of `desc` from its
+/// own camera at `size`, path traced to `max_depth` with `spp` samples: the
+/// input of a block z-test between two descriptions of one scene.
+pub fn file_camera_batches(
+    desc: &SceneDesc,
+    size: (u32, u32),
+    spp: u32,
+    batches: u64,
+    max_depth: u32,
+    seed: u64,
+) -> Vec<candela_image::RgbImage> {
+    let opts = SceneOptions {
+        width: size.0,
+        height: size.1,
+        camera_mode: CameraMode::File,
+        ..SceneOptions::default()
+    };
+    let scene = Scene::build(desc, &opts).expect("scene builds");
+    (0..batches)
+        .map(|b| {
+            let settings = RenderSettings {
+                spp,
+                seed: seed + 1000 * b,
+                integrator: IntegratorSettings {
+                    max_depth,
+                    ..Default::default()
+                },
+                ..Default::default()
+            };
+            let out = render(&scene, &settings, &|_| {}).expect("render");
+            assert_eq!(out.stats.invalid_samples, 0, "NaN or infinite samples");
+            out.film.resolve()
+        })
+        .collect()
+}
