@@ -80,6 +80,21 @@ pub struct LoadError {
     pub message: String,
 }
 
+/// An error at `loc` in `file`, on `element`: what every loader reports.
+pub(crate) fn located(
+    file: &std::path::Path,
+    loc: SourceLoc,
+    element: &str,
+    kind: ErrorKind,
+    message: String,
+) -> LoadError {
+    LoadError {
+        loc: Some(loc),
+        element: element.to_string(),
+        ..LoadError::whole_file(file.to_path_buf(), kind, message)
+    }
+}
+
 impl LoadError {
     /// An error that has no place in the file (reading it failed, or it is too big).
     pub(crate) fn whole_file(file: PathBuf, kind: ErrorKind, message: String) -> Self {

@@ -86,20 +86,8 @@ fn tokens(line: &str) -> impl Iterator<Item = (u32, &str)> {
     })
 }
 
-/// A located error in file `file`.
-pub(crate) fn error(
-    file: &Path,
-    loc: SourceLoc,
-    element: &str,
-    kind: ErrorKind,
-    message: String,
-) -> LoadError {
-    LoadError {
-        loc: Some(loc),
-        element: element.to_string(),
-        ..LoadError::whole_file(file.to_path_buf(), kind, message)
-    }
-}
+/// A located error (the one constructor every loader shares).
+pub(crate) use crate::error::located as error;
 
 /// Argument `i` of `st` as a finite number.
 pub(crate) fn number(file: &Path, st: &Statement, i: usize) -> Result<f32, LoadError> {

@@ -13,8 +13,8 @@ mod body;
 mod header;
 mod mesh;
 
-use crate::desc::{MaterialDesc, MeshDesc, SceneDesc, SourceLoc};
-use crate::error::{ErrorKind, LoadError};
+use crate::desc::{MaterialDesc, MeshDesc, SceneDesc};
+use crate::error::LoadError;
 use crate::report::Collector;
 use crate::{LoadOptions, Loaded};
 use std::path::Path;
@@ -57,17 +57,4 @@ pub(crate) fn read_ply_bytes(
     Ok(mesh)
 }
 
-/// A located error in the PLY file `file`.
-pub(crate) fn located(
-    file: &Path,
-    loc: SourceLoc,
-    element: &str,
-    kind: ErrorKind,
-    message: String,
-) -> LoadError {
-    LoadError {
-        loc: Some(loc),
-        element: element.to_string(),
-        ..LoadError::whole_file(file.to_path_buf(), kind, message)
-    }
-}
+pub(crate) use crate::error::located;
