@@ -7,8 +7,10 @@
 
 mod geometry;
 mod lights;
+mod names;
 
 pub use geometry::{Geometry, GeometryError, SphereData, TriangleData};
+pub use names::SceneNames;
 
 use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
@@ -93,6 +95,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Light sources, including emissive primitives.
     pub lights: LightSet,
+    /// The description's names of materials, lights and shapes.
+    pub names: SceneNames,
     /// Things the description asks for that this renderer does not do,
     /// each named once.
     pub unsupported: Vec<String>,
@@ -110,6 +114,7 @@ impl Scene {
         let mut camera = frame_scene(desc, opts.camera_mode, opts.width, opts.height)?;
         apply_lens(&mut camera, opts)?;
         let geometry = Geometry::from_desc(desc)?;
+        let mut names = SceneNames::from_desc(desc);
         let mut unsupported: Vec<String> = Vec::new();
         let mut textures = TextureCache::new();
         let mut materials: Vec<Material> = desc
@@ -128,6 +133,7 @@ impl Scene {
         if materials.is_empty() {
             let grey = candela_scene::MaterialDesc::default_grey();
             materials.push(Material::from_desc(&grey, &mut textures).0);
+            names.materials.push(grey.name);
         }
         let mut warnings = textures.into_problems();
         warnings.extend(unplaced_meshes(desc));
@@ -146,6 +152,7 @@ impl Scene {
             &materials,
             environment.as_ref(),
             scene_radius,
+            &mut names,
         );
         let start = Instant::now();
         let sphere_shapes: Vec<_> = geometry
@@ -165,6 +172,7 @@ impl Scene {
             geometry,
             materials,
             lights,
+            names,
             unsupported,
             warnings,
             accel,
