@@ -266,7 +266,11 @@ fn named_metals_and_rough_plastic_load() {
     let names = ["Ag", "Al", "Au", "Cu", "Cr", "Fe", "Ni", "Ti", "W"];
     let mut body = String::from(r#"<scene version="3.0.0">"#);
     for (i, name) in names.iter().enumerate() {
-        let kind = if i % 2 == 0 { "conductor" } else { "roughconductor" };
+        let kind = if i % 2 == 0 {
+            "conductor"
+        } else {
+            "roughconductor"
+        };
         body += &format!(
             r#"<shape type="cube"><bsdf type="{kind}"><string name="material" value="{name}"/></bsdf></shape>"#
         );
@@ -287,7 +291,10 @@ fn named_metals_and_rough_plastic_load() {
         };
         assert_eq!(alpha == 0.0, i % 2 == 0, "{name}");
         // Metals: all channels positive, absorbing (k > 1).
-        assert!(eta.min_element() > 0.0 && k.min_element() > 1.0, "{name}: {eta} {k}");
+        assert!(
+            eta.min_element() > 0.0 && k.min_element() > 1.0,
+            "{name}: {eta} {k}"
+        );
     }
     // Gold: Mitsuba 3.9.1's scalar_rgb value (data/metals/README.md).
     let BsdfDesc::Conductor { eta, k, .. } = m[2].bsdf else {

@@ -89,7 +89,12 @@ impl CoatingTable {
 /// The directional albedo E(μ) of the reflection lobe of a rough interface
 /// of relative IOR `eta` (far side over near side) seen at cosine `mu`,
 /// by a `grid` × `grid` midpoint rule over the visible normals.
-pub(crate) fn reflection_albedo(dist: MicrofacetDistribution, eta: f32, mu: f32, grid: usize) -> f32 {
+pub(crate) fn reflection_albedo(
+    dist: MicrofacetDistribution,
+    eta: f32,
+    mu: f32,
+    grid: usize,
+) -> f32 {
     let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
     let g1 = dist.g1(wo);
     let mut sum = 0.0f64;

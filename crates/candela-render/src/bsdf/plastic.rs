@@ -96,11 +96,7 @@ impl Plastic {
         }
         let transmitted = (1.0 - fresnel_dielectric(wo.z.abs(), self.ior))
             * (1.0 - fresnel_dielectric(wi.z.abs(), self.ior));
-        let kept = if self.linear {
-            Vec3::ONE
-        } else {
-            self.diffuse
-        };
+        let kept = if self.linear { Vec3::ONE } else { self.diffuse };
         let renormalised = self.diffuse / (Vec3::ONE - self.internal_reflectance * kept);
         renormalised * (transmitted * FRAC_1_PI / (self.ior * self.ior))
     }

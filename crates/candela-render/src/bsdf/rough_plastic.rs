@@ -88,8 +88,7 @@ impl RoughPlastic {
         } else {
             Vec3::splat(1.0 - f_int)
         };
-        let base_scale =
-            diffuse / round_trips.max(Vec3::splat(1e-6)) * (FRAC_1_PI / (ior * ior));
+        let base_scale = diffuse / round_trips.max(Vec3::splat(1e-6)) * (FRAC_1_PI / (ior * ior));
         let (d, s) = (diffuse.element_sum(), specular.element_sum());
         Self {
             dist,

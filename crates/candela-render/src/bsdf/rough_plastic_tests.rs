@@ -39,7 +39,13 @@ fn red(dist: MicrofacetDistribution) -> Bsdf {
 }
 
 fn white(dist: MicrofacetDistribution, nonlinear: bool) -> Bsdf {
-    Bsdf::RoughPlastic(RoughPlastic::new(dist, Vec3::ONE, Vec3::ONE, IOR, nonlinear))
+    Bsdf::RoughPlastic(RoughPlastic::new(
+        dist,
+        Vec3::ONE,
+        Vec3::ONE,
+        IOR,
+        nonlinear,
+    ))
 }
 
 /// The coating alone: no base, white specular tint.
