@@ -1,21 +1,21 @@
 //! The energy a rough dielectric coating lets through, tabulated once per
 //! (distribution, IOR) for the rough plastic (see `rough_plastic.rs`).
 //!
-//! A rough coating reflects the directional albedo
+//! A rough coating seen at μ = cos θ reflects the directional albedo
 //! E(μ) = ∫ F(wo·m) D(m) G2(wo, wi) / (4 cos θo) dωi (the reflection lobe of
-//! the rough dielectric, Fresnel included) and lets the rest,
-//! T(μ) = 1 − E(μ), into the layer, μ = cos θ. Light scattered back up from
-//! the base meets the coating from inside, whose albedo for diffuse light is
-//! F_int = 2 ∫₀¹ E_inside(μ) μ dμ (mostly total internal reflection). Both
-//! are Mitsuba's `roughplastic` precomputation (Weidlich & Wilkie 2007); the
-//! energy that masking removes from the reflection lobe is counted as
-//! transmitted, so the base receives it (a first-order energy
-//! compensation, documented in `rough_plastic.rs`).
+//! the rough dielectric, Fresnel included) and transmits the energy T(μ) of
+//! the rough dielectric's refraction lobe into the layer; E + T < 1 by what
+//! masking removes (single scattering). Light scattered back up from the
+//! base meets the coating from inside, whose albedo for diffuse light is
+//! F_int = 2 ∫₀¹ E_inside(μ) μ dμ (mostly total internal reflection). These
+//! are Mitsuba 3's `roughplastic` precomputations (`eval_transmittance` and
+//! `eval_reflectance`; Weidlich & Wilkie 2007).
 //!
-//! E is integrated over the visible normals: E(μ) = E_u[F · G2 / G1 · [wi
-//! above the surface]] with m the visible normal for u on a regular
-//! midpoint grid of the unit square, which is smooth where the lobe is
-//! narrow and never misses it. Anisotropic distributions are tabulated at
+//! Both albedos are integrated over the visible normals: E(μ) = E_u[F ·
+//! G2(wo, wi) / G1(wo) · [wi above]] and T(μ) = E_u[(1 − F) · G2(wo, wt) /
+//! G1(wo) · [wt below]], wi and wt the reflected and refracted directions of
+//! the visible normal m for u on a regular midpoint grid of the unit square,
+//! which is smooth where the lobe is narrow and never misses it. Anisotropic distributions are tabulated at
 //! azimuth 0 (Mitsuba refuses them for `roughplastic`).
 //!
 //! Tables are interned: one per distinct (distribution, IOR) for the whole
@@ -29,7 +29,7 @@ use std::sync::Mutex;
 use glam::{Vec2, Vec3};
 
 use super::distribution::MicrofacetDistribution;
-use super::fresnel::fresnel_dielectric;
+use super::fresnel::{fresnel_dielectric, refract};
 
 /// Entries of T(μ), at μ = j / (N − 1).
 pub(super) const TABLE_SIZE: usize = 64;
@@ -54,7 +54,7 @@ impl CoatingTable {
         let mut transmittance = [0.0; TABLE_SIZE];
         for (j, t) in transmittance.iter_mut().enumerate() {
             let mu = (j as f32 / (TABLE_SIZE - 1) as f32).max(MIN_COSINE);
-            *t = (1.0 - reflection_albedo(dist, ior, mu, GRID)).clamp(0.0, 1.0);
+            *t = transmission_albedo(dist, ior, mu, GRID).clamp(0.0, 1.0);
         }
         let internal_reflectance = (0..INTERNAL_NODES)
             .map(|j| {
@@ -71,7 +71,7 @@ impl CoatingTable {
         }
     }
 
-    /// T(μ) = 1 − E(μ) for light arriving from outside at cosine `mu`
+    /// T(μ): the energy the coating lets in from outside at cosine `mu`
     /// (either side; linear interpolation in μ).
     pub(crate) fn transmittance(&self, mu: f32) -> f32 {
         let x = mu.abs().min(1.0) * (TABLE_SIZE - 1) as f32;
@@ -114,6 +114,41 @@ pub(crate) fn reflection_albedo(
                 continue;
             }
             let value = fresnel_dielectric(cos_om, eta) * dist.g2(wo, wi) / g1;
+            sum += f64::from(value);
+        }
+    }
+    (sum / (grid * grid) as f64) as f32
+}
+
+/// The energy T(μ) that a rough interface of relative IOR `eta` transmits
+/// from cosine `mu`, by the same rule as [`reflection_albedo`].
+pub(crate) fn transmission_albedo(
+    dist: MicrofacetDistribution,
+    eta: f32,
+    mu: f32,
+    grid: usize,
+) -> f32 {
+    let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+    let g1 = dist.g1(wo);
+    let mut sum = 0.0f64;
+    for a in 0..grid {
+        for b in 0..grid {
+            let u = Vec2::new(
+                (a as f32 + 0.5) / grid as f32,
+                (b as f32 + 0.5) / grid as f32,
+            );
+            let m = dist.sample_visible_normal(wo, u);
+            let cos_om = wo.dot(m);
+            if cos_om <= 0.0 {
+                continue;
+            }
+            let Some(wt) = refract(wo, m, eta) else {
+                continue; // total internal reflection at this microfacet
+            };
+            if wt.z >= 0.0 {
+                continue;
+            }
+            let value = (1.0 - fresnel_dielectric(cos_om, eta)) * dist.g2(wo, wt) / g1;
             sum += f64::from(value);
         }
     }

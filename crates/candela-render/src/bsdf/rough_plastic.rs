@@ -9,9 +9,9 @@
 //!   dielectric Fresnel term, G2 height-correlated Smith: Mitsuba uses the
 //!   separable G1·G1, a difference of a few percent at grazing angles);
 //! - f_base(wo, wi) = ρ' T(cos θo) T(cos θi) / (π η²): light that the
-//!   coating lets in (T = 1 − E, E the coating's directional albedo, see
-//!   `coating.rs`), scattered by the base, let out again; 1/η² is the
-//!   radiance change on leaving the denser coating;
+//!   coating lets in (T the energy of the rough dielectric's refraction
+//!   lobe, see `coating.rs`), scattered by the base, let out again; 1/η² is
+//!   the radiance change on leaving the denser coating;
 //! - ρ' = ρ / (1 − ρ F_int) (`nonlinear`) or ρ / (1 − F_int) (Mitsuba's
 //!   default): the sum of the round trips between base and coating, F_int
 //!   the coating's internal albedo for diffuse light. The nonlinear form is
@@ -23,16 +23,19 @@
 //!
 //! # Energy
 //! At ρ = 1 the directional albedo is
-//! E(μo) + T(μo) · (1 − Ē) / (η² (1 − F_int)), with Ē = 2∫E(μ)μ dμ the
-//! coating's albedo for diffuse light from outside. For a smooth coating
-//! the fraction is exactly 1 (reciprocity: the diffuse transmittances of
-//! the two sides differ by η²) and the plastic is white. A rough coating
-//! loses energy to masking from both sides; the loss from outside is
-//! counted in T (the base receives it), the larger loss from inside lowers
-//! F_int, and the fraction falls below 1: the albedo is at most 1 and
-//! drops by a few percent at large α (`rough_plastic_tests.rs` prints the
-//! curve). The model is reciprocal: both terms are symmetric in (wo, wi).
-//!
+//! E(μo) + T(μo) · T̄ / (η² (1 − F_int)), with T̄ = 2∫T(μ)μ dμ the
+//! coating's transmittance for diffuse light from outside. For a smooth
+//! coating T = 1 − F and the fraction is exactly 1 (reciprocity: the diffuse
+//! transmittances of the two sides differ by η²), so the white plastic
+//! reflects everything. A rough coating loses energy to single-scattering
+//! masking on the way in, on the way out, and in its internal reflections
+//! (which lowers F_int): the albedo is below 1, by a few percent at α = 0.1
+//! and by up to half at α = 1 (`rough_plastic_tests.rs` prints the curve).
+//! This is Mitsuba 3's model and its loss; we keep it, rather than forcing
+//! F_int = 1 − T̄/η² (which would make the white plastic white), so that
+//! scenes render as in Mitsuba. The model is reciprocal: both terms are
+//! symmetric in (wo, wi).
+
 //! # Sampling
 //! The coating's lobe by visible normals with probability
 //! p = (1 − T(μo)) s̄ / ((1 − T(μo)) s̄ + T(μo)(1 − s̄)), s̄ = mean(s) /
