@@ -36,9 +36,12 @@ fn ball_bsdf(desc: &SceneDesc) -> Bsdf {
     m.bsdf.expect("a BSDF")
 }
 
+/// Whether a BSDF is of the kind a material id names.
+type IsExpected = fn(&Bsdf) -> bool;
+
 #[test]
 fn every_ball_material_loads_and_maps_to_its_bsdf() {
-    let expect: [(&str, fn(&Bsdf) -> bool); 8] = [
+    let expect: [(&str, IsExpected); 8] = [
         ("roughglass", |b| matches!(b, Bsdf::RoughGlass { .. })),
         ("glass", |b| matches!(b, Bsdf::Glass { .. })),
         ("roughplastic", |b| matches!(b, Bsdf::RoughPlastic(_))),
