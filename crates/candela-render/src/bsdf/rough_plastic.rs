@@ -35,7 +35,7 @@
 //! F_int = 1 − T̄/η² (which would make the white plastic white), so that
 //! scenes render as in Mitsuba. The model is reciprocal: both terms are
 //! symmetric in (wo, wi).
-
+//!
 //! # Sampling
 //! The coating's lobe by visible normals with probability
 //! p = (1 − T(μo)) s̄ / ((1 − T(μo)) s̄ + T(μo)(1 − s̄)), s̄ = mean(s) /
