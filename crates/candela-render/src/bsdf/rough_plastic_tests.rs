@@ -55,11 +55,10 @@ fn coating_only(dist: MicrofacetDistribution) -> Bsdf {
 
 #[test]
 fn rough_plastic_sampling_matches_its_pdf() {
+    // A narrow Beckmann lobe (on a finer grid) and a wide GGX one.
     for dist in [
         MicrofacetDistribution::beckmann(0.05),
-        MicrofacetDistribution::beckmann(0.4),
-        MicrofacetDistribution::ggx(0.1),
-        MicrofacetDistribution::ggx(0.6),
+        MicrofacetDistribution::ggx(0.5),
     ] {
         let resolution = if dist.alphas().0 < 0.1 {
             (81, 161)
