@@ -61,7 +61,15 @@ REGIONS = {
         "rough glass (roughdielectric)": (84, 72, 102, 88),
         "back wall": (52, 14, 76, 38),
         "light": (52, 5, 76, 11),
-    }
+    },
+    "cornell-coated": {
+        "rough plastic box (roughplastic, nonlinear)": (38, 46, 50, 62),
+        "copper (conductor)": (62, 62, 74, 76),
+        "red plastic (roughplastic)": (28, 72, 46, 88),
+        "aluminium (roughconductor)": (84, 72, 102, 88),
+        "back wall": (52, 14, 76, 38),
+        "light": (52, 5, 76, 11),
+    },
 }
 
 

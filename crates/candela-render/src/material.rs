@@ -8,7 +8,7 @@
 //! returned by name as [`Unsupported`] (the scene reports it once), never
 //! dropped silently.
 
-use crate::bsdf::{Bsdf, MicrofacetDistribution, Plastic};
+use crate::bsdf::{Bsdf, MicrofacetDistribution, Plastic, RoughPlastic};
 use crate::shape::SurfaceHit;
 use crate::texture::{ImageTexture, TextureCache};
 use candela_scene::{BsdfDesc, MaterialDesc, MicrofacetModel, TextureSlot};
@@ -95,16 +95,19 @@ impl Material {
                 specular,
                 ior,
                 alpha,
-                ..
-            } => {
-                if alpha > 0.0 {
-                    unsupported.push(Unsupported(format!(
-                        "material '{}': rough plastic rendered as smooth plastic",
-                        desc.name
-                    )));
-                }
-                Some(Bsdf::Plastic(Plastic::new(diffuse, specular, ior)))
-            }
+                distribution,
+                nonlinear,
+            } => Some(if alpha > 0.0 {
+                Bsdf::RoughPlastic(RoughPlastic::new(
+                    microfacets(distribution, alpha),
+                    diffuse,
+                    specular,
+                    ior,
+                    nonlinear,
+                ))
+            } else {
+                Bsdf::Plastic(Plastic::new(diffuse, specular, ior).with_nonlinear(nonlinear))
+            }),
             BsdfDesc::Conductor {
                 distribution,
                 alpha,
@@ -115,12 +118,7 @@ impl Material {
                 eta,
                 k,
             }),
-            // No smooth Fresnel conductor yet: a mirror with the
-            // conductor's normal-incidence reflectance (the colour is
-            // right, the brightening toward grazing angles is lost).
-            BsdfDesc::Conductor { eta, k, .. } => Some(Bsdf::Mirror {
-                reflectance: conductor_reflectance_at_normal(eta, k),
-            }),
+            BsdfDesc::Conductor { eta, k, .. } => Some(Bsdf::Conductor { eta, k }),
             BsdfDesc::Black => None,
         };
         let (mut diffuse_texture, mut diffuse_scale) = (None, 1.0);
@@ -191,13 +189,4 @@ fn microfacets(model: MicrofacetModel, alpha: f32) -> MicrofacetDistribution {
         MicrofacetModel::Beckmann => MicrofacetDistribution::beckmann(alpha),
         MicrofacetModel::Ggx => MicrofacetDistribution::ggx(alpha),
     }
-}
-
-/// A conductor's Fresnel reflectance at normal incidence,
-/// ((η − 1)² + k²) / ((η + 1)² + k²) per channel.
-fn conductor_reflectance_at_normal(eta: Vec3, k: Vec3) -> Vec3 {
-    let k2 = k * k;
-    let num = (eta - Vec3::ONE) * (eta - Vec3::ONE) + k2;
-    let den = (eta + Vec3::ONE) * (eta + Vec3::ONE) + k2;
-    (num / den.max(Vec3::splat(f32::MIN_POSITIVE))).clamp(Vec3::ZERO, Vec3::ONE)
 }

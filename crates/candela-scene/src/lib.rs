@@ -17,6 +17,7 @@ mod formats;
 mod gltf;
 mod hints;
 mod lamps;
+pub mod metals;
 mod mitsuba;
 mod obj;
 mod ply;

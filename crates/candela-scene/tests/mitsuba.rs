@@ -256,6 +256,73 @@ fn a_smooth_none_conductor_takes_its_specular_reflectance() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+#[test]
+fn named_metals_and_rough_plastic_load() {
+    // Every metal the issue names (Fe and Ti from Johnson & Christy, Ni the
+    // data Mitsuba calls "Ni_palik"), on smooth and rough conductors, and a
+    // rough plastic with its distribution and `nonlinear`.
+    let dir = std::env::temp_dir().join(format!("candela-mitsuba-metals-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let names = ["Ag", "Al", "Au", "Cu", "Cr", "Fe", "Ni", "Ti", "W"];
+    let mut body = String::from(r#"<scene version="3.0.0">"#);
+    for (i, name) in names.iter().enumerate() {
+        let kind = if i % 2 == 0 {
+            "conductor"
+        } else {
+            "roughconductor"
+        };
+        body += &format!(
+            r#"<shape type="cube"><bsdf type="{kind}"><string name="material" value="{name}"/></bsdf></shape>"#
+        );
+    }
+    body += r#"<shape type="cube"><bsdf type="roughplastic">
+        <string name="distribution" value="ggx"/><float name="alpha" value="0.3"/>
+        <boolean name="nonlinear" value="true"/><float name="int_ior" value="1.6"/>
+        <rgb name="diffuse_reflectance" value="0.8, 0.2, 0.1"/></bsdf></shape>
+    <shape type="cube"><bsdf type="plastic"/></shape></scene>"#;
+    let path = dir.join("metals.xml");
+    std::fs::write(&path, body).unwrap();
+    let l = load(&path, &strict()).unwrap();
+    let m = &l.scene.materials;
+    assert_eq!(m.len(), names.len() + 2);
+    for (i, name) in names.iter().enumerate() {
+        let BsdfDesc::Conductor { alpha, eta, k, .. } = m[i].bsdf else {
+            panic!("{name}: {:?}", m[i].bsdf)
+        };
+        assert_eq!(alpha == 0.0, i % 2 == 0, "{name}");
+        // Metals: all channels positive, absorbing (k > 1).
+        assert!(
+            eta.min_element() > 0.0 && k.min_element() > 1.0,
+            "{name}: {eta} {k}"
+        );
+    }
+    // Gold: Mitsuba 3.9.1's scalar_rgb value (data/metals/README.md).
+    let BsdfDesc::Conductor { eta, k, .. } = m[2].bsdf else {
+        panic!()
+    };
+    assert!(close(eta, Vec3::new(0.143036, 0.375307, 1.44205)), "{eta}");
+    assert!(close(k, Vec3::new(3.983, 2.38556, 1.60336)), "{k}");
+    assert!(matches!(
+        m[names.len()].bsdf,
+        BsdfDesc::Plastic { distribution: MicrofacetModel::Ggx, alpha, nonlinear: true, ior, .. }
+            if (alpha - 0.3).abs() < 1e-6 && (ior - 1.6 / 1.000277).abs() < 1e-5
+    ));
+    assert!(matches!(
+        m[names.len() + 1].bsdf,
+        BsdfDesc::Plastic { alpha, nonlinear: false, .. } if alpha == 0.0
+    ));
+    // An unknown name is a located error that lists the known ones.
+    std::fs::write(
+        &path,
+        r#"<scene version="3.0.0"><shape type="cube"><bsdf type="conductor">
+        <string name="material" value="Unobtainium"/></bsdf></shape></scene>"#,
+    )
+    .unwrap();
+    let err = load(&path, &strict()).unwrap_err().to_string();
+    assert!(err.contains("Unobtainium") && err.contains("Fe, "), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A mutation of the base file: replace, cut, or insert a token that
 /// matters to the loader.
 #[derive(Clone, Debug)]

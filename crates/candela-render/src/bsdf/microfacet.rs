@@ -21,7 +21,7 @@ pub(super) const FLAGS: BsdfFlags = BsdfFlags::REFLECTION.union(BsdfFlags::GLOSS
 
 /// Mirrors the pair to the side where `wo.z > 0` (two-sided shading);
 /// returns the flipped pair and the sign to restore.
-fn to_upper(wo: Vec3, wi: Vec3) -> (Vec3, Vec3, f32) {
+pub(super) fn to_upper(wo: Vec3, wi: Vec3) -> (Vec3, Vec3, f32) {
     if wo.z < 0.0 {
         (
             Vec3::new(wo.x, wo.y, -wo.z),

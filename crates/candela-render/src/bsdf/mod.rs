@@ -35,6 +35,7 @@
 //!   that lobe (1 for a single lobe), so `weight()` works uniformly.
 
 mod beckmann;
+mod coating;
 mod diffuse;
 #[cfg(test)]
 mod diffuse_tests;
@@ -55,6 +56,9 @@ mod plastic_tests;
 mod rough_dielectric;
 #[cfg(test)]
 mod rough_dielectric_tests;
+mod rough_plastic;
+#[cfg(test)]
+mod rough_plastic_tests;
 mod special;
 mod specular;
 #[cfg(test)]
@@ -67,6 +71,7 @@ mod thin_dielectric_tests;
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
 pub use plastic::Plastic;
+pub use rough_plastic::RoughPlastic;
 
 use rough_dielectric::RoughDielectric;
 
@@ -167,6 +172,19 @@ pub enum Bsdf {
     /// dielectric coating, a delta specular lobe plus a diffuse one with
     /// the internal-scattering renormalisation (see `plastic.rs`).
     Plastic(Plastic),
+    /// Rough plastic (Mitsuba's `roughplastic`): a diffuse base under a
+    /// rough dielectric coating, a glossy microfacet lobe plus a diffuse one
+    /// scaled by the coating's transmittance both ways (see
+    /// `rough_plastic.rs`).
+    RoughPlastic(RoughPlastic),
+    /// Smooth conductor (delta): the mirror direction weighted by the exact
+    /// conductor Fresnel reflectance, which rises to 1 at grazing angles.
+    Conductor {
+        /// Real part of the conductor's IOR, per channel.
+        eta: Vec3,
+        /// Imaginary part (extinction coefficient), per channel.
+        k: Vec3,
+    },
     /// Rough conductor: Beckmann or GGX microfacets, exact conductor
     /// Fresnel, height-correlated Smith masking-shadowing (see
     /// `microfacet.rs`).
@@ -206,6 +224,8 @@ impl Bsdf {
             Bsdf::ThinGlass { .. } => specular::GLASS_FLAGS,
             Bsdf::RoughGlass { .. } => rough_dielectric::FLAGS,
             Bsdf::Plastic(_) => plastic::FLAGS,
+            Bsdf::RoughPlastic(_) => rough_plastic::FLAGS,
+            Bsdf::Conductor { .. } => specular::MIRROR_FLAGS,
             Bsdf::Microfacet { .. } => microfacet::FLAGS,
         }
     }
@@ -223,9 +243,11 @@ impl Bsdf {
             Bsdf::Mirror { .. }
             | Bsdf::Glass { .. }
             | Bsdf::Refraction { .. }
-            | Bsdf::ThinGlass { .. } => Vec3::ZERO,
+            | Bsdf::ThinGlass { .. }
+            | Bsdf::Conductor { .. } => Vec3::ZERO,
             Bsdf::RoughGlass { .. } => self.rough_dielectric().map_or(Vec3::ZERO, |b| b.f(wo, wi)),
             Bsdf::Plastic(plastic) => plastic.f(wo, wi),
+            Bsdf::RoughPlastic(plastic) => plastic.f(wo, wi),
             Bsdf::Microfacet {
                 distribution,
                 eta,
@@ -256,6 +278,8 @@ impl Bsdf {
             } => specular::sample_thin_glass(reflectance, transmittance, ior, wo, u1),
             Bsdf::RoughGlass { .. } => self.rough_dielectric()?.sample(wo, u1, u2),
             Bsdf::Plastic(plastic) => plastic.sample(wo, u1, u2),
+            Bsdf::RoughPlastic(plastic) => plastic.sample(wo, u1, u2),
+            Bsdf::Conductor { eta, k } => specular::sample_conductor(eta, k, wo),
             Bsdf::Microfacet {
                 distribution,
                 eta,
@@ -272,9 +296,11 @@ impl Bsdf {
             Bsdf::Mirror { .. }
             | Bsdf::Glass { .. }
             | Bsdf::Refraction { .. }
-            | Bsdf::ThinGlass { .. } => 0.0,
+            | Bsdf::ThinGlass { .. }
+            | Bsdf::Conductor { .. } => 0.0,
             Bsdf::RoughGlass { .. } => self.rough_dielectric().map_or(0.0, |b| b.pdf(wo, wi)),
             Bsdf::Plastic(plastic) => plastic.pdf(wo, wi),
+            Bsdf::RoughPlastic(plastic) => plastic.pdf(wo, wi),
             Bsdf::Microfacet { distribution, .. } => microfacet::pdf(distribution, wo, wi),
         }
     }
@@ -291,7 +317,10 @@ impl Bsdf {
             | Bsdf::ThinGlass { transmittance, .. }
             | Bsdf::RoughGlass { transmittance, .. } => transmittance,
             Bsdf::Plastic(plastic) => plastic.diffuse(),
-            Bsdf::Microfacet { eta, k, .. } => fresnel::fresnel_conductor(1.0, eta, k),
+            Bsdf::RoughPlastic(plastic) => plastic.diffuse(),
+            Bsdf::Microfacet { eta, k, .. } | Bsdf::Conductor { eta, k } => {
+                fresnel::fresnel_conductor(1.0, eta, k)
+            }
         }
     }
 }

@@ -38,6 +38,7 @@ pub struct Plastic {
     ior: f32,
     internal_reflectance: f32,
     specular_weight: f32,
+    linear: bool,
 }
 
 impl Plastic {
@@ -55,6 +56,19 @@ impl Plastic {
             // Mitsuba's choice: share samples between the lobes by their
             // mean tints (then by Fresnel, per direction).
             specular_weight: if d + s > 0.0 { s / (d + s) } else { 0.5 },
+            linear: false,
+        }
+    }
+
+    /// Mitsuba's `nonlinear` switch: `true` (what [`Self::new`] makes) keeps
+    /// the physical renormalisation ρ/(1 − ρ F_dr); `false`, Mitsuba's
+    /// default, uses ρ/(1 − F_dr), linear in ρ so that textures keep their
+    /// colours, equal at ρ = 1 and brighter below (still at most 1, being
+    /// linear in ρ).
+    pub fn with_nonlinear(self, nonlinear: bool) -> Self {
+        Self {
+            linear: !nonlinear,
+            ..self
         }
     }
 
@@ -82,7 +96,8 @@ impl Plastic {
         }
         let transmitted = (1.0 - fresnel_dielectric(wo.z.abs(), self.ior))
             * (1.0 - fresnel_dielectric(wi.z.abs(), self.ior));
-        let renormalised = self.diffuse / (Vec3::ONE - self.internal_reflectance * self.diffuse);
+        let kept = if self.linear { Vec3::ONE } else { self.diffuse };
+        let renormalised = self.diffuse / (Vec3::ONE - self.internal_reflectance * kept);
         renormalised * (transmitted * FRAC_1_PI / (self.ior * self.ior))
     }
 

@@ -87,3 +87,36 @@ fn white_plastic_furnace_is_exactly_one() {
     let albedo = albedo_by_sampling(&grey, Vec3::Z, 50_000);
     assert!(albedo.mean.x < 0.6, "{:?}", albedo.mean);
 }
+
+#[test]
+fn linear_plastic_keeps_the_base_colour_linear() {
+    // Mitsuba's default (`nonlinear` false): ρ/(1 − F_dr) instead of
+    // ρ/(1 − ρ F_dr); the same at ρ = 1, brighter in the ratio of the
+    // denominators below, and linear in ρ.
+    let f_dr = diffuse_fresnel_reflectance(1.0 / IOR);
+    let (wo, wi) = (Vec3::new(0.3, 0.0, 0.954), Vec3::new(-0.5, 0.2, 0.843));
+    let make = |rho: f32, nonlinear| {
+        Bsdf::Plastic(Plastic::new(Vec3::splat(rho), Vec3::ONE, IOR).with_nonlinear(nonlinear))
+    };
+    let ratio = make(0.5, false).f(wo, wi).x / make(0.5, true).f(wo, wi).x;
+    assert!(
+        (ratio - (1.0 - 0.5 * f_dr) / (1.0 - f_dr)).abs() < 1e-5,
+        "{ratio}"
+    );
+    assert!(
+        (make(1.0, false).f(wo, wi) - make(1.0, true).f(wo, wi))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    let half = make(0.25, false).f(wo, wi).x / make(0.5, false).f(wo, wi).x;
+    assert!((half - 0.5).abs() < 1e-5);
+    for wo in test_directions() {
+        let a = albedo_by_sampling(&make(0.8, false), wo, 20_000);
+        assert!(
+            a.mean.x <= 1.0 + 3.0 * a.std_error.x,
+            "{wo:?}: {:?}",
+            a.mean
+        );
+    }
+}

@@ -118,3 +118,11 @@ pub(super) fn sample_thin_glass(
         delta_sample(-wo, transmittance, 1.0 - r, REFRACTION_FLAGS)
     }
 }
+
+/// A smooth conductor: the mirror direction with the exact conductor
+/// Fresnel reflectance of complex IOR `eta + i k` as its weight, so metals
+/// brighten toward grazing angles (Mitsuba's `conductor`).
+pub(super) fn sample_conductor(eta: Vec3, k: Vec3, wo: Vec3) -> Option<BsdfSample> {
+    let reflectance = super::fresnel::fresnel_conductor(wo.z.abs(), eta, k);
+    delta_sample(reflect_local(wo), reflectance, 1.0, MIRROR_FLAGS)
+}

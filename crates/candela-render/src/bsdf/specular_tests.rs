@@ -161,3 +161,45 @@ fn glass_conserves_energy_up_to_radiance_compression() {
         assert!((reflected - fresnel).abs() < 2e-3, "{wo:?}");
     }
 }
+
+#[test]
+fn smooth_conductor_reflects_with_complex_fresnel() {
+    use super::fresnel::fresnel_conductor;
+    let (eta, k) = (
+        Vec3::new(0.143, 0.375, 1.442),
+        Vec3::new(3.983, 2.386, 1.603),
+    );
+    let bsdf = Bsdf::Conductor { eta, k };
+    assert!(bsdf.is_specular() && bsdf.flags().is_reflection());
+    for wo in test_directions() {
+        let s = bsdf
+            .sample(wo, 0.3, Vec2::new(0.1, 0.9))
+            .expect("a delta sample");
+        assert_eq!(s.wi, Vec3::new(-wo.x, -wo.y, wo.z));
+        assert!(s.is_specular() && s.pdf == 1.0);
+        let expected = fresnel_conductor(wo.z.abs(), eta, k);
+        assert!((s.weight() - expected).abs().max_element() < 1e-5, "{wo:?}");
+        assert_eq!(bsdf.f(wo, s.wi), Vec3::ZERO);
+        assert_eq!(bsdf.pdf(wo, s.wi), 0.0);
+    }
+    // Brighter toward grazing angles, white at grazing, and Mitsuba's
+    // "none" (eta 0, k 1) is a perfect mirror at every angle.
+    let normal = bsdf.sample(Vec3::Z, 0.5, Vec2::ZERO).map(|s| s.weight());
+    let grazing = bsdf
+        .sample(Vec3::new(0.9999, 0.0, 0.0141), 0.5, Vec2::ZERO)
+        .map(|s| s.weight());
+    let (normal, grazing) = (normal.unwrap_or(Vec3::ZERO), grazing.unwrap_or(Vec3::ZERO));
+    assert!(
+        grazing.cmpgt(normal).all() && grazing.min_element() > 0.9,
+        "{grazing:?}"
+    );
+    assert!((bsdf.albedo() - normal).abs().max_element() < 1e-5);
+    let none = Bsdf::Conductor {
+        eta: Vec3::ZERO,
+        k: Vec3::ONE,
+    };
+    for wo in test_directions() {
+        let w = none.sample(wo, 0.5, Vec2::ZERO).map(|s| s.weight());
+        assert!((w.unwrap_or(Vec3::ZERO) - Vec3::ONE).abs().max_element() < 1e-5);
+    }
+}

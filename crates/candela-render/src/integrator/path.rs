@@ -237,7 +237,9 @@ fn refraction_eta2(bsdf: &Bsdf, wo: Vec3) -> f32 {
         | Bsdf::Mirror { .. }
         | Bsdf::Microfacet { .. }
         | Bsdf::ThinGlass { .. }
-        | Bsdf::Plastic(_) => 1.0,
+        | Bsdf::Plastic(_)
+        | Bsdf::RoughPlastic(_)
+        | Bsdf::Conductor { .. } => 1.0,
     }
 }
 

@@ -283,6 +283,10 @@ pub enum BsdfDesc {
         alpha: f32,
         /// The coating's microfacet distribution when rough.
         distribution: MicrofacetModel,
+        /// Whether the base's colour is renormalised by the physical sum of
+        /// internal reflections, ρ/(1 − ρ F_int), which saturates colours
+        /// (Mitsuba's `nonlinear`), instead of ρ/(1 − F_int) (the default).
+        nonlinear: bool,
     },
     /// A conductor with a complex index of refraction, smooth when `alpha`
     /// is 0, else rough with the given distribution.

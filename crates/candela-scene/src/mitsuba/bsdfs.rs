@@ -7,8 +7,8 @@
 //! | `dielectric` | `Glass`, ior = int_ior / ext_ior (numbers or names) |
 //! | `thindielectric` | `ThinDielectric` |
 //! | `roughdielectric` | `RoughDielectric` (alpha, beckmann or ggx) |
-//! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth), `material` presets or eta/k; a smooth `none` with `specular_reflectance` is a `Mirror` of that reflectance |
-//! | `plastic`, `roughplastic` | `Plastic` |
+//! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth), `material` presets (the measured metals of [`crate::metals`]) or eta/k; a smooth `none` with `specular_reflectance` is a `Mirror` of that reflectance |
+//! | `plastic`, `roughplastic` | `Plastic` (alpha 0 when smooth), with `nonlinear` |
 //! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the normal-map slot |
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot |
 //!
@@ -142,6 +142,7 @@ impl Builder {
                     } else {
                         MicrofacetModel::Beckmann
                     },
+                    nonlinear: boolean(doc, node, "nonlinear", false)?,
                 }
             }
             "principled" | "principledthin" => {

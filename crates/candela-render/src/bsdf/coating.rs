@@ -1,0 +1,173 @@
+//! The energy a rough dielectric coating lets through, tabulated once per
+//! (distribution, IOR) for the rough plastic (see `rough_plastic.rs`).
+//!
+//! A rough coating seen at μ = cos θ reflects the directional albedo
+//! E(μ) = ∫ F(wo·m) D(m) G2(wo, wi) / (4 cos θo) dωi (the reflection lobe of
+//! the rough dielectric, Fresnel included) and transmits the energy T(μ) of
+//! the rough dielectric's refraction lobe into the layer; E + T < 1 by what
+//! masking removes (single scattering). Light scattered back up from the
+//! base meets the coating from inside, whose albedo for diffuse light is
+//! F_int = 2 ∫₀¹ E_inside(μ) μ dμ (mostly total internal reflection). These
+//! are Mitsuba 3's `roughplastic` precomputations (`eval_transmittance` and
+//! `eval_reflectance`; Weidlich & Wilkie 2007).
+//!
+//! Both albedos are integrated over the visible normals: E(μ) = E_u[F ·
+//! G2(wo, wi) / G1(wo) · [wi above]] and T(μ) = E_u[(1 − F) · G2(wo, wt) /
+//! G1(wo) · [wt below]], wi and wt the reflected and refracted directions of
+//! the visible normal m for u on a regular midpoint grid of the unit square,
+//! which is smooth where the lobe is narrow and never misses it. Anisotropic distributions are tabulated at
+//! azimuth 0 (Mitsuba refuses them for `roughplastic`).
+//!
+//! Tables are interned: one per distinct (distribution, IOR) for the whole
+//! process, leaked so that [`super::RoughPlastic`] stays a small `Copy`
+//! value holding a `&'static` reference. Their number is the number of
+//! distinct rough-plastic parameter sets in the scenes loaded, so a caller
+//! that varies α per hit (a roughness texture) must quantise α first.
+
+use std::sync::Mutex;
+
+use glam::{Vec2, Vec3};
+
+use super::distribution::MicrofacetDistribution;
+use super::fresnel::{fresnel_dielectric, refract};
+
+/// Entries of T(μ), at μ = j / (N − 1).
+pub(super) const TABLE_SIZE: usize = 64;
+/// Grid side of the visible-normal quadrature per direction.
+const GRID: usize = 64;
+/// Cosines at which E_inside is averaged for F_int (midpoints).
+const INTERNAL_NODES: usize = 64;
+/// The smallest cosine tabulated (μ = 0 exactly has no visible normals).
+const MIN_COSINE: f32 = 1e-4;
+
+/// T(μ) from outside and F_int from inside, for one coating.
+#[derive(Debug, PartialEq)]
+pub(crate) struct CoatingTable {
+    dist: MicrofacetDistribution,
+    ior: f32,
+    transmittance: [f32; TABLE_SIZE],
+    internal_reflectance: f32,
+}
+
+impl CoatingTable {
+    fn compute(dist: MicrofacetDistribution, ior: f32) -> Self {
+        let mut transmittance = [0.0; TABLE_SIZE];
+        for (j, t) in transmittance.iter_mut().enumerate() {
+            let mu = (j as f32 / (TABLE_SIZE - 1) as f32).max(MIN_COSINE);
+            *t = transmission_albedo(dist, ior, mu, GRID).clamp(0.0, 1.0);
+        }
+        let internal_reflectance = (0..INTERNAL_NODES)
+            .map(|j| {
+                let mu = (j as f32 + 0.5) / INTERNAL_NODES as f32;
+                2.0 * mu * reflection_albedo(dist, 1.0 / ior, mu, GRID / 2)
+            })
+            .sum::<f32>()
+            / INTERNAL_NODES as f32;
+        Self {
+            dist,
+            ior,
+            transmittance,
+            internal_reflectance: internal_reflectance.clamp(0.0, 1.0),
+        }
+    }
+
+    /// T(μ): the energy the coating lets in from outside at cosine `mu`
+    /// (either side; linear interpolation in μ).
+    pub(crate) fn transmittance(&self, mu: f32) -> f32 {
+        let x = mu.abs().min(1.0) * (TABLE_SIZE - 1) as f32;
+        let i = (x as usize).min(TABLE_SIZE - 2);
+        let w = x - i as f32;
+        self.transmittance[i] * (1.0 - w) + self.transmittance[i + 1] * w
+    }
+
+    /// F_int: the coating's albedo for diffuse light from inside.
+    pub(crate) fn internal_reflectance(&self) -> f32 {
+        self.internal_reflectance
+    }
+}
+
+/// The directional albedo E(μ) of the reflection lobe of a rough interface
+/// of relative IOR `eta` (far side over near side) seen at cosine `mu`,
+/// by a `grid` × `grid` midpoint rule over the visible normals.
+pub(crate) fn reflection_albedo(
+    dist: MicrofacetDistribution,
+    eta: f32,
+    mu: f32,
+    grid: usize,
+) -> f32 {
+    let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+    let g1 = dist.g1(wo);
+    let mut sum = 0.0f64;
+    for a in 0..grid {
+        for b in 0..grid {
+            let u = Vec2::new(
+                (a as f32 + 0.5) / grid as f32,
+                (b as f32 + 0.5) / grid as f32,
+            );
+            let m = dist.sample_visible_normal(wo, u);
+            let cos_om = wo.dot(m);
+            if cos_om <= 0.0 {
+                continue;
+            }
+            let wi = 2.0 * cos_om * m - wo;
+            if wi.z <= 0.0 {
+                continue;
+            }
+            let value = fresnel_dielectric(cos_om, eta) * dist.g2(wo, wi) / g1;
+            sum += f64::from(value);
+        }
+    }
+    (sum / (grid * grid) as f64) as f32
+}
+
+/// The energy T(μ) that a rough interface of relative IOR `eta` transmits
+/// from cosine `mu`, by the same rule as [`reflection_albedo`].
+pub(crate) fn transmission_albedo(
+    dist: MicrofacetDistribution,
+    eta: f32,
+    mu: f32,
+    grid: usize,
+) -> f32 {
+    let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+    let g1 = dist.g1(wo);
+    let mut sum = 0.0f64;
+    for a in 0..grid {
+        for b in 0..grid {
+            let u = Vec2::new(
+                (a as f32 + 0.5) / grid as f32,
+                (b as f32 + 0.5) / grid as f32,
+            );
+            let m = dist.sample_visible_normal(wo, u);
+            let cos_om = wo.dot(m);
+            if cos_om <= 0.0 {
+                continue;
+            }
+            let Some(wt) = refract(wo, m, eta) else {
+                continue; // total internal reflection at this microfacet
+            };
+            if wt.z >= 0.0 {
+                continue;
+            }
+            let value = (1.0 - fresnel_dielectric(cos_om, eta)) * dist.g2(wo, wt) / g1;
+            sum += f64::from(value);
+        }
+    }
+    (sum / (grid * grid) as f64) as f32
+}
+
+/// Every table made so far.
+static TABLES: Mutex<Vec<&'static CoatingTable>> = Mutex::new(Vec::new());
+
+/// The table for a coating of distribution `dist` and IOR `ior` (inside
+/// over outside), computed on first use.
+pub(crate) fn coating_table(dist: MicrofacetDistribution, ior: f32) -> &'static CoatingTable {
+    // A poisoned lock only means another thread panicked while pushing a
+    // finished table: the list is still valid.
+    let mut tables = TABLES.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(t) = tables.iter().find(|t| t.dist == dist && t.ior == ior) {
+        return t;
+    }
+    let table: &'static CoatingTable = Box::leak(Box::new(CoatingTable::compute(dist, ior)));
+    tables.push(table);
+    table
+}
