@@ -210,6 +210,8 @@ impl Bsdf {
             Bsdf::ThinGlass { .. } => "thin glass",
             Bsdf::RoughGlass { .. } => "rough glass",
             Bsdf::Plastic(_) => "plastic",
+            Bsdf::RoughPlastic(_) => "rough plastic",
+            Bsdf::Conductor { .. } => "conductor",
             Bsdf::Microfacet { .. } => "rough conductor",
         }
     }
