@@ -84,7 +84,11 @@ mod imp {
     ) -> bool {
         let (o, inv) = (ray.origin(), ray.inv_dir());
         let r = Ray8 {
-            origin: [_mm256_set1_ps(o.x), _mm256_set1_ps(o.y), _mm256_set1_ps(o.z)],
+            origin: [
+                _mm256_set1_ps(o.x),
+                _mm256_set1_ps(o.y),
+                _mm256_set1_ps(o.z),
+            ],
             inv_dir: [
                 _mm256_set1_ps(inv.x),
                 _mm256_set1_ps(inv.y),

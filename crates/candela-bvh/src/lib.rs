@@ -22,9 +22,9 @@ mod wide_traverse;
 mod wide_validate;
 
 pub use aabb::Aabb;
+pub use avx2::has_avx2;
 pub use node::Node;
 pub use traverse::{RayBoxQuery, StatsSink, TraversalStats};
-pub use avx2::has_avx2;
 pub use wide::{Bvh4, Bvh8, Node4, Node8, WideBvh, WideNode, PADDING};
 
 use glam::Vec3;

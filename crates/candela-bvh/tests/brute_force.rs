@@ -71,8 +71,13 @@ impl Query<'_> {
             self.hit(order[slot as usize], tm)
         });
         assert_eq!(got.map(|g| g.1), brute, "{ctx}: closest");
-        assert!(stats.prims_tested as usize <= self.boxes.len(), "{ctx}: a primitive tested twice");
-        let any = wide.any_hit(&q, t_max, &mut (), |slot, tm| self.hit(order[slot as usize], tm));
+        assert!(
+            stats.prims_tested as usize <= self.boxes.len(),
+            "{ctx}: a primitive tested twice"
+        );
+        let any = wide.any_hit(&q, t_max, &mut (), |slot, tm| {
+            self.hit(order[slot as usize], tm)
+        });
         assert_eq!(any, brute.is_some(), "{ctx}: any");
         // Whole leaves per call, as SIMD packet callers use it.
         let mut leaf_stats = TraversalStats::default();
