@@ -232,6 +232,22 @@ fn prefetch_entry<const W: usize>(
     }
 }
 
+/// Whether `a` is visited before `b`. Closest hit: the nearer entry (ties
+/// to the later lane). Any hit: leaves before subtrees, in lane order
+/// otherwise. A leaf costs about one node visit and may end the query at
+/// once: large occluders (a wall, a ground quad) sit in leaves near the
+/// root, and an occluded shadow ray then stops there instead of first
+/// walking the detailed geometry its path also crosses. An unoccluded ray
+/// visits everything it enters in either order.
+#[inline(always)]
+fn takes_first(a: &Entry, b: &Entry, ordered: bool) -> bool {
+    if ordered {
+        a.t < b.t
+    } else {
+        a.count > 0 && b.count == 0
+    }
+}
+
 /// Pushes `e` unless the stack is full (which the depth bound rules out).
 #[inline(always)]
 fn push(stack: &mut [MaybeUninit<Entry>], sp: &mut usize, e: Entry) {
@@ -281,8 +297,8 @@ pub(crate) fn walk_with<const W: usize, const ORDERED: bool, S: StatsSink, T: No
                 t: dist[lane],
             };
             // One or two children entered (most nodes on incoherent
-            // rays) skip the general sort. Ties go to the higher lane,
-            // as in the sort below.
+            // rays) skip the general sort, with the same order as
+            // `takes_first` (ties go to the higher lane).
             let a = mask.trailing_zeros() as usize;
             let rest = mask & mask.wrapping_sub(1);
             if mask != 0 && rest == 0 {
@@ -291,11 +307,12 @@ pub(crate) fn walk_with<const W: usize, const ORDERED: bool, S: StatsSink, T: No
             }
             if mask != 0 && rest & (rest - 1) == 0 {
                 let b = rest.trailing_zeros() as usize;
-                let (near, far) = if !ORDERED || dist[a] < dist[b] {
-                    (a, b)
+                let b_first = if ORDERED {
+                    dist[b] <= dist[a]
                 } else {
-                    (b, a)
+                    node.count[b] > 0 && node.count[a] == 0
                 };
+                let (near, far) = if b_first { (b, a) } else { (a, b) };
                 let e = entry(far);
                 prefetch_entry(nodes, &e, &prefetch_leaf);
                 push(&mut stack[..cap], &mut sp, e);
@@ -316,7 +333,7 @@ pub(crate) fn walk_with<const W: usize, const ORDERED: bool, S: StatsSink, T: No
                     bits &= bits - 1;
                     let e = entry(lane);
                     let mut j = k;
-                    while ORDERED && j > 0 && hits[j - 1].t < e.t {
+                    while j > 0 && takes_first(&hits[j - 1], &e, ORDERED) {
                         hits[j] = hits[j - 1];
                         j -= 1;
                     }
