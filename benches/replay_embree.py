@@ -40,9 +40,16 @@ except ImportError:
     sys.exit("replay_embree.py: needs the embreex package (see the module docstring)")
 
 
+def read_bytes(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError as e:
+        sys.exit(f"{path}: {e.strerror}")
+
+
 def read_tri(path):
-    with open(path, "rb") as f:
-        data = f.read()
+    data = read_bytes(path)
     if len(data) < 64 or data[:4] != b"TRIM":
         sys.exit(f"{path}: not a .tri file (no TRIM header)")
     version, nv, nt = struct.unpack_from("<3I", data, 4)
@@ -59,8 +66,7 @@ def read_tri(path):
 
 
 def read_rays(path):
-    with open(path, "rb") as f:
-        data = f.read()
+    data = read_bytes(path)
     if len(data) < 64 or data[:4] != b"RAYS":
         sys.exit(f"{path}: not a .rays file (no RAYS header)")
     (version,) = struct.unpack_from("<I", data, 4)
@@ -77,8 +83,7 @@ def read_rays(path):
 
 
 def read_hits(path):
-    with open(path, "rb") as f:
-        data = f.read()
+    data = read_bytes(path)
     if len(data) < 32 or data[:4] != b"HITS":
         sys.exit(f"{path}: not a .hits file (no HITS header)")
     (n,) = struct.unpack_from("<I", data, 8)
