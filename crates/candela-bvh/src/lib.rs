@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 mod aabb;
+mod avx2;
 mod build;
 mod node;
 pub mod simd;
@@ -21,9 +22,10 @@ mod wide_traverse;
 mod wide_validate;
 
 pub use aabb::Aabb;
+pub use avx2::has_avx2;
 pub use node::Node;
 pub use traverse::{RayBoxQuery, StatsSink, TraversalStats};
-pub use wide::{Bvh4, Node4, PADDING};
+pub use wide::{Bvh4, Bvh8, Node4, Node8, WideBvh, WideNode, PADDING};
 
 use glam::Vec3;
 

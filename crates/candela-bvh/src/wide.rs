@@ -1,48 +1,59 @@
-//! A 4-wide BVH collapsed from the binary one, for SIMD box tests.
+//! Wide BVHs (4 or 8 children per node) collapsed from the binary one, for
+//! SIMD box tests.
 //!
-//! Each node holds the boxes of up to four children in
-//! structure-of-arrays form, so one set of 4-lane operations tests all four
-//! (as in Embree's BVH4 and Wald et al., "Getting Rid of Packets", 2008).
+//! Each node holds the boxes of up to `W` children in structure-of-arrays
+//! form, so one set of `W`-lane operations tests all of them (as in
+//! Embree's BVH4/BVH8 and Wald et al., "Getting Rid of Packets", 2008).
 //! Collapsing repeatedly opens the child with the largest surface area, the
-//! one most likely to be visited, until four children are reached. Leaves
-//! and the primitive order are the binary tree's.
+//! one the SAH deems most likely to be visited, until `W` children are
+//! reached (the greedy collapse of Wald et al. and of pbrt-v4's wide BVH
+//! discussions); a leaf is never opened. Leaves and the primitive order are
+//! the binary tree's. [`Bvh4`] is traversed with SSE (baseline on x86_64),
+//! [`Bvh8`] with AVX2 where the CPU has it and two SSE halves otherwise.
 
 use crate::node::Node;
 use crate::{Aabb, Bvh};
 
-/// The primitive order's entry for an unused slot (see [`Bvh4::pad_leaves`]).
+/// The primitive order's entry for an unused slot (see [`WideBvh::pad_leaves`]).
 pub const PADDING: u32 = u32::MAX;
 
-/// Four child boxes and references. 128 bytes, cache-line aligned.
+/// `W` child boxes and references, cache-line aligned (128 bytes for
+/// [`Node4`], 256 for [`Node8`]).
 ///
 /// Rows of `bounds`: min x, min y, min z, max x, max y, max z; lane `i`
 /// belongs to child `i`. An unused lane has an empty box (`min = +inf`,
 /// `max = -inf`), which no ray enters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
-pub struct Node4 {
+pub struct WideNode<const W: usize> {
     /// Child boxes, one lane per child.
-    pub bounds: [[f32; 4]; 6],
+    pub bounds: [[f32; W]; 6],
     /// Interior child: its node index. Leaf child: its first primitive slot.
-    pub child: [u32; 4],
+    pub child: [u32; W],
     /// Leaf child: its primitive count. Zero for an interior child or an unused lane.
-    pub count: [u32; 4],
+    pub count: [u32; W],
 }
 
-const _: () = assert!(std::mem::size_of::<Node4>() == 128);
+/// A node of the 4-wide tree.
+pub type Node4 = WideNode<4>;
+/// A node of the 8-wide tree.
+pub type Node8 = WideNode<8>;
 
-impl Node4 {
-    const EMPTY: Node4 = Node4 {
+const _: () = assert!(std::mem::size_of::<Node4>() == 128);
+const _: () = assert!(std::mem::size_of::<Node8>() == 256);
+
+impl<const W: usize> WideNode<W> {
+    const EMPTY: Self = Self {
         bounds: [
-            [f32::INFINITY; 4],
-            [f32::INFINITY; 4],
-            [f32::INFINITY; 4],
-            [f32::NEG_INFINITY; 4],
-            [f32::NEG_INFINITY; 4],
-            [f32::NEG_INFINITY; 4],
+            [f32::INFINITY; W],
+            [f32::INFINITY; W],
+            [f32::INFINITY; W],
+            [f32::NEG_INFINITY; W],
+            [f32::NEG_INFINITY; W],
+            [f32::NEG_INFINITY; W],
         ],
-        child: [0; 4],
-        count: [0; 4],
+        child: [0; W],
+        count: [0; W],
     };
 
     /// The box of lane `i` (empty for an unused lane).
@@ -62,18 +73,25 @@ impl Node4 {
     }
 }
 
-/// The 4-wide hierarchy; see the module docs.
+/// A wide hierarchy; see the module docs.
 #[derive(Clone, Debug, Default)]
-pub struct Bvh4 {
-    pub(crate) nodes: Vec<Node4>,
+pub struct WideBvh<const W: usize> {
+    pub(crate) nodes: Vec<WideNode<W>>,
     pub(crate) order: Vec<u32>,
     pub(crate) depth: u32,
+    /// Traverse with AVX2 (8-wide trees only; set when the CPU has it).
+    pub(crate) avx2: bool,
 }
 
-impl Bvh4 {
+/// The 4-wide hierarchy (SSE).
+pub type Bvh4 = WideBvh<4>;
+/// The 8-wide hierarchy (AVX2, with an SSE fallback).
+pub type Bvh8 = WideBvh<8>;
+
+impl<const W: usize> WideBvh<W> {
     /// Collapses a binary BVH, taking over its primitive order.
     pub fn from_binary(bvh: Bvh) -> Self {
-        let mut nodes = Vec::with_capacity(bvh.nodes.len() / 2 + 1);
+        let mut nodes = Vec::with_capacity(bvh.nodes.len() / (W / 2).max(1) + 1);
         let mut depth = 0;
         if !bvh.nodes.is_empty() {
             let root = if bvh.nodes[0].is_leaf() {
@@ -87,6 +105,7 @@ impl Bvh4 {
             nodes,
             order: bvh.order,
             depth,
+            avx2: W == 8 && crate::avx2::has_avx2(),
         }
     }
 
@@ -99,7 +118,7 @@ impl Bvh4 {
         let block = block.max(1);
         let mut leaves: Vec<(u32, usize, usize)> = Vec::new();
         for (i, n) in self.nodes.iter().enumerate() {
-            for lane in 0..4 {
+            for lane in 0..W {
                 if n.count[lane] > 0 {
                     leaves.push((n.child[lane], i, lane));
                 }
@@ -119,31 +138,51 @@ impl Bvh4 {
     }
 
     /// `primitive_order()[slot]` is the caller's index of the primitive in
-    /// `slot`, or [`PADDING`] for a gap left by [`Bvh4::pad_leaves`].
+    /// `slot`, or [`PADDING`] for a gap left by [`WideBvh::pad_leaves`].
     pub fn primitive_order(&self) -> &[u32] {
         &self.order
     }
 
     /// The node array, root first.
-    pub fn nodes(&self) -> &[Node4] {
+    pub fn nodes(&self) -> &[WideNode<W>] {
         &self.nodes
     }
 
-    /// Levels of 4-wide nodes.
+    /// Levels of wide nodes.
     pub fn depth(&self) -> u32 {
         self.depth
     }
 
     /// Memory held by nodes and the primitive order.
     pub fn bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node4>() + self.order.len() * 4
+        self.nodes.len() * std::mem::size_of::<WideNode<W>>() + self.order.len() * 4
+    }
+}
+
+impl Bvh8 {
+    /// Whether queries run the AVX2 node test (true by default where the CPU
+    /// supports AVX2 and FMA).
+    pub fn uses_avx2(&self) -> bool {
+        self.avx2
+    }
+
+    /// Chooses the node test: AVX2 (ignored where the CPU lacks it) or the
+    /// portable one of two 4-lane halves. For tests and benchmarks that
+    /// compare the two; both give identical answers.
+    pub fn set_avx2(&mut self, on: bool) {
+        self.avx2 = on && crate::avx2::has_avx2();
     }
 }
 
 /// Writes a node for the binary nodes `lanes` (and, recursively, below);
 /// returns the depth reached.
-fn emit(bin: &[Node], mut lanes: Vec<usize>, out: &mut Vec<Node4>, depth: u32) -> u32 {
-    while lanes.len() < 4 {
+fn emit<const W: usize>(
+    bin: &[Node],
+    mut lanes: Vec<usize>,
+    out: &mut Vec<WideNode<W>>,
+    depth: u32,
+) -> u32 {
+    while lanes.len() < W {
         let widest = lanes
             .iter()
             .enumerate()
@@ -159,7 +198,7 @@ fn emit(bin: &[Node], mut lanes: Vec<usize>, out: &mut Vec<Node4>, depth: u32) -
         lanes.push(bin[i].offset as usize);
     }
     let me = out.len();
-    out.push(Node4::EMPTY);
+    out.push(WideNode::EMPTY);
     let mut deepest = depth;
     for (lane, &i) in lanes.iter().enumerate() {
         let b = &bin[i];

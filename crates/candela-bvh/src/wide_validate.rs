@@ -1,9 +1,9 @@
-//! Structural checks of the 4-wide hierarchy.
+//! Structural checks of the wide hierarchies.
 
 use crate::wide::PADDING;
-use crate::{Aabb, Bvh4};
+use crate::{Aabb, WideBvh};
 
-impl Bvh4 {
+impl<const W: usize> WideBvh<W> {
     /// Checks every invariant against the primitive boxes: every node
     /// reached once from the root, child nodes' boxes inside their lane's
     /// box, each primitive's box inside its leaf lane, leaf ranges tiling
@@ -47,7 +47,7 @@ impl Bvh4 {
             if std::mem::replace(&mut reached[i], true) {
                 return Err(format!("node {i} reached twice"));
             }
-            for lane in 0..4 {
+            for lane in 0..W {
                 let b = node.lane_bounds(lane);
                 if !parent.contains(&b) {
                     return Err(format!("node {i} lane {lane} sticks out of its parent"));

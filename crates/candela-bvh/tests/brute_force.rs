@@ -6,7 +6,8 @@
 //! brute-force verdict, for every ray.
 
 use candela_bvh::{
-    Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, TraversalStats, PADDING,
+    has_avx2, Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, Bvh8, RayBoxQuery, TraversalStats,
+    WideBvh, PADDING,
 };
 use glam::Vec3;
 
@@ -29,6 +30,94 @@ fn box_hit(o: Vec3, d: Vec3, b: &Aabb, t_max: f32) -> Option<f32> {
         far = far.min(t0.max(t1));
     }
     (near <= far && near < t_max as f64).then_some(near as f32)
+}
+
+/// Every leaf of a padded tree starts at a multiple of 4 slots.
+fn assert_padded_aligned<const W: usize>(padded: &WideBvh<W>, label: &str) {
+    for n in padded.nodes() {
+        for lane in 0..W {
+            if n.count[lane] > 0 {
+                assert_eq!(n.child[lane] % 4, 0, "{label}: padded leaf unaligned");
+            }
+        }
+    }
+}
+
+/// One ray against the boxes, replayed through a wide tree's queries.
+struct Query<'a> {
+    o: Vec3,
+    d: Vec3,
+    t_max: f32,
+    boxes: &'a [Aabb],
+}
+
+impl Query<'_> {
+    fn hit(&self, id: u32, tm: f32) -> Option<f32> {
+        box_hit(self.o, self.d, &self.boxes[id as usize], tm).filter(|&t| t < tm)
+    }
+
+    /// Closest and any hit, slot by slot and leaf by leaf, against `brute`;
+    /// returns the closest-hit statistics.
+    fn check_wide<const W: usize>(
+        &self,
+        wide: &WideBvh<W>,
+        brute: Option<f32>,
+        ctx: &str,
+    ) -> TraversalStats {
+        let (q, t_max) = (RayBoxQuery::new(self.o, self.d), self.t_max);
+        let order = wide.primitive_order();
+        let mut stats = TraversalStats::default();
+        let got = wide.closest_hit(&q, t_max, &mut stats, |slot, tm| {
+            self.hit(order[slot as usize], tm)
+        });
+        assert_eq!(got.map(|g| g.1), brute, "{ctx}: closest");
+        assert!(
+            stats.prims_tested as usize <= self.boxes.len(),
+            "{ctx}: a primitive tested twice"
+        );
+        let any = wide.any_hit(&q, t_max, &mut (), |slot, tm| {
+            self.hit(order[slot as usize], tm)
+        });
+        assert_eq!(any, brute.is_some(), "{ctx}: any");
+        // Whole leaves per call, as SIMD packet callers use it.
+        let mut leaf_stats = TraversalStats::default();
+        let leaves = wide.closest_hit_leaves(
+            &q,
+            t_max,
+            &mut leaf_stats,
+            |_, _| {},
+            |first, count, tm| {
+                (first..first + count)
+                    .filter_map(|slot| self.hit(order[slot as usize], tm).map(|t| (slot, t)))
+                    .min_by(|a, b| a.1.total_cmp(&b.1))
+            },
+        );
+        assert_eq!(leaves.map(|g| g.1), brute, "{ctx}: leaf-wise closest");
+        assert_eq!(leaf_stats, stats, "{ctx}: leaf-wise statistics");
+        let any_leaves = wide.any_hit_leaves(
+            &q,
+            t_max,
+            &mut (),
+            |_, _| {},
+            |first, count, tm| {
+                (first..first + count).any(|slot| self.hit(order[slot as usize], tm).is_some())
+            },
+        );
+        assert_eq!(any_leaves, brute.is_some(), "{ctx}: leaf-wise any");
+        stats
+    }
+
+    /// Closest hit through a padded tree, which must never visit padding.
+    fn check_padded<const W: usize>(&self, padded: &WideBvh<W>, brute: Option<f32>, ctx: &str) {
+        let q = RayBoxQuery::new(self.o, self.d);
+        let porder = padded.primitive_order();
+        let got = padded.closest_hit(&q, self.t_max, &mut (), |slot, tm| {
+            let id = porder[slot as usize];
+            assert_ne!(id, PADDING, "{ctx}: padding slot visited");
+            self.hit(id, tm)
+        });
+        assert_eq!(got.map(|g| g.1), brute, "{ctx}: padded");
+    }
 }
 
 fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
@@ -60,14 +149,22 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
             if let Err(e) = padded.validate(boxes) {
                 panic!("{label} {strategy:?}/{max_leaf} (padded): {e}");
             }
-            let porder = padded.primitive_order();
-            for n in padded.nodes() {
-                for lane in 0..4 {
-                    if n.count[lane] > 0 {
-                        assert_eq!(n.child[lane] % 4, 0, "{label}: padded leaf unaligned");
-                    }
-                }
+            let wide8 = Bvh8::from_binary(bvh.clone());
+            if let Err(e) = wide8.validate(boxes) {
+                panic!("{label} {strategy:?}/{max_leaf} (8-wide): {e}");
             }
+            assert!(wide8.depth() <= wide.depth());
+            assert_eq!(order, wide8.primitive_order());
+            assert_eq!(wide8.uses_avx2(), has_avx2());
+            let mut wide8_portable = wide8.clone();
+            wide8_portable.set_avx2(false);
+            let mut padded8 = wide8.clone();
+            padded8.pad_leaves(4);
+            if let Err(e) = padded8.validate(boxes) {
+                panic!("{label} {strategy:?}/{max_leaf} (8-wide padded): {e}");
+            }
+            assert_padded_aligned(&padded, label);
+            assert_padded_aligned(&padded8, label);
             let world = bvh.bounds();
             for k in 0..rays {
                 let o = if world.is_empty() {
@@ -113,67 +210,16 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
                     brute.is_some(),
                     "{label} {strategy:?}/{max_leaf} ray {k}: any hit"
                 );
-                let mut wide_stats = TraversalStats::default();
-                let got4 = wide.closest_hit(&q, t_max, &mut wide_stats, |slot, tm| {
-                    box_hit(o, d, &boxes[order[slot as usize] as usize], tm).filter(|&t| t < tm)
-                });
-                assert_eq!(
-                    got4.map(|g| g.1),
-                    brute,
-                    "{label} {strategy:?}/{max_leaf} ray {k}: 4-wide closest"
-                );
-                assert!(wide_stats.prims_tested as usize <= boxes.len());
-                let any4 = wide.any_hit(&q, t_max, &mut (), |slot, tm| {
-                    box_hit(o, d, &boxes[order[slot as usize] as usize], tm).filter(|&t| t < tm)
-                });
-                assert_eq!(
-                    any4,
-                    brute.is_some(),
-                    "{label} {strategy:?}/{max_leaf} ray {k}: 4-wide any"
-                );
-                // Whole leaves per call, as SIMD packet callers use it.
-                let leaves = wide.closest_hit_leaves(
-                    &q,
-                    t_max,
-                    &mut (),
-                    |_, _| {},
-                    |first, count, tm| {
-                        (first..first + count)
-                            .filter_map(|slot| {
-                                let b = &boxes[order[slot as usize] as usize];
-                                box_hit(o, d, b, tm).filter(|&t| t < tm).map(|t| (slot, t))
-                            })
-                            .min_by(|a, b| a.1.total_cmp(&b.1))
-                    },
-                );
-                assert_eq!(
-                    leaves.map(|g| g.1),
-                    brute,
-                    "{label} ray {k}: leaf-wise closest"
-                );
-                let any_leaves = wide.any_hit_leaves(
-                    &q,
-                    t_max,
-                    &mut (),
-                    |_, _| {},
-                    |first, count, tm| {
-                        (first..first + count).any(|slot| {
-                            let b = &boxes[order[slot as usize] as usize];
-                            box_hit(o, d, b, tm).is_some_and(|t| t < tm)
-                        })
-                    },
-                );
-                assert_eq!(
-                    any_leaves,
-                    brute.is_some(),
-                    "{label} ray {k}: leaf-wise any"
-                );
-                let padded_hit = padded.closest_hit(&q, t_max, &mut (), |slot, tm| {
-                    let id = porder[slot as usize];
-                    assert_ne!(id, PADDING, "{label}: padding slot visited");
-                    box_hit(o, d, &boxes[id as usize], tm).filter(|&t| t < tm)
-                });
-                assert_eq!(padded_hit.map(|g| g.1), brute, "{label} ray {k}: padded");
+                let ctx = format!("{label} {strategy:?}/{max_leaf} ray {k}");
+                let query = Query { o, d, t_max, boxes };
+                let s4 = query.check_wide(&wide, brute, &format!("{ctx} 4-wide"));
+                let s8 = query.check_wide(&wide8, brute, &format!("{ctx} 8-wide"));
+                let s8p = query.check_wide(&wide8_portable, brute, &format!("{ctx} 8-wide SSE"));
+                // The AVX2 and SSE node tests are the same arithmetic.
+                assert_eq!(s8, s8p, "{ctx}: 8-wide AVX2 and SSE statistics differ");
+                assert!(s4.prims_tested.max(s8.prims_tested) as usize <= boxes.len());
+                query.check_padded(&padded, brute, &ctx);
+                query.check_padded(&padded8, brute, &format!("{ctx} 8-wide"));
             }
         }
     }
@@ -269,6 +315,8 @@ fn huge_boxes_among_small_ones() {
         bvh.validate(&boxes).unwrap();
         let wide = Bvh4::from_binary(bvh.clone());
         wide.validate(&boxes).unwrap();
+        let wide8 = Bvh8::from_binary(bvh.clone());
+        wide8.validate(&boxes).unwrap();
         // Every ray starts inside the first huge box, so any-hit is always true.
         let order = bvh.primitive_order();
         for _ in 0..100 {
@@ -285,6 +333,10 @@ fn huge_boxes_among_small_ones() {
                 box_hit(o, d, &boxes[order[slot as usize] as usize], tm)
             });
             assert!(hit4);
+            let hit8 = wide8.any_hit(&q, f32::INFINITY, &mut (), |slot, tm| {
+                box_hit(o, d, &boxes[order[slot as usize] as usize], tm)
+            });
+            assert!(hit8);
         }
     }
 }

@@ -49,7 +49,7 @@ pub struct RaysArgs {
     #[arg(long, value_enum, default_value_t = Bvh::Sah)]
     pub bvh: Bvh,
     /// BVH node layout.
-    #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
+    #[arg(long, value_enum, default_value_t = NodeLayout::Auto)]
     pub layout: NodeLayout,
     /// Replay only the first N rays (brute force over a big set is slow).
     #[arg(long)]
@@ -78,7 +78,7 @@ pub struct ScalingArgs {
     #[arg(long, value_enum, default_value_t = Bvh::Sah)]
     pub bvh: Bvh,
     /// BVH node layout.
-    #[arg(long, value_enum, default_value_t = NodeLayout::Wide4)]
+    #[arg(long, value_enum, default_value_t = NodeLayout::Auto)]
     pub layout: NodeLayout,
 }
 
@@ -87,8 +87,12 @@ pub struct ScalingArgs {
 pub enum NodeLayout {
     /// Binary BVH, scalar box tests.
     Binary,
-    /// 4-wide BVH, SIMD box tests.
+    /// 4-wide BVH, SSE box tests.
     Wide4,
+    /// 8-wide BVH, AVX2 box tests (SSE on CPUs without AVX2).
+    Wide8,
+    /// What the renderer uses: 8-wide with AVX2, else 4-wide.
+    Auto,
 }
 
 impl From<NodeLayout> for Layout {
@@ -96,6 +100,8 @@ impl From<NodeLayout> for Layout {
         match l {
             NodeLayout::Binary => Layout::Binary,
             NodeLayout::Wide4 => Layout::Wide4,
+            NodeLayout::Wide8 => Layout::Wide8,
+            NodeLayout::Auto => Layout::default(),
         }
     }
 }

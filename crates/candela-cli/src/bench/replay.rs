@@ -30,7 +30,7 @@ pub fn run(args: &RaysArgs) -> Result<()> {
     println!(
         "build ({:?}, {:?}): {:.1} ms, {} nodes, depth {}, BVH {:.1} bytes/triangle, with triangle data {:.1} bytes/triangle",
         args.bvh,
-        args.layout,
+        candela_render::accel::Layout::from(args.layout),
         info.build_seconds * 1e3,
         info.nodes,
         info.depth,

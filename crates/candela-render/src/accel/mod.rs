@@ -13,7 +13,7 @@ use crate::geometry::Ray;
 use crate::shape::{
     intersect_sphere, intersect_triangle, sphere_uv, PrimKind, PrimRef, TriangleRay, TriangleRay4,
 };
-use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, Bvh4, RayBoxQuery, StatsSink};
+use candela_bvh::{Aabb, BuildOptions, BuildStrategy, Bvh, RayBoxQuery, StatsSink, WideBvh};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -75,15 +75,28 @@ pub struct AccelInfo {
 }
 
 /// Which node layout traversal uses.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Layout {
     /// The binary BVH: 32-byte nodes, two scalar box tests per node.
     Binary,
-    /// The binary BVH collapsed to 4-wide nodes tested with SIMD, leaves
+    /// The binary BVH collapsed to 4-wide nodes tested with SSE, leaves
     /// tested four triangles at a time: about twice the binary layout's
     /// rate on incoherent rays (`candela bench rays --layout`).
-    #[default]
     Wide4,
+    /// 8-wide nodes tested with AVX2 (SSE halves on CPUs without it),
+    /// the same 4-triangle leaves.
+    Wide8,
+}
+
+impl Default for Layout {
+    /// [`Layout::Wide8`] where the CPU has AVX2, [`Layout::Wide4`] elsewhere.
+    fn default() -> Self {
+        if candela_bvh::has_avx2() {
+            Layout::Wide8
+        } else {
+            Layout::Wide4
+        }
+    }
 }
 
 /// The hierarchy in the chosen layout.
@@ -91,8 +104,84 @@ pub enum Layout {
 enum Tree {
     /// Primitives one per slot.
     Binary(Bvh, Vec<Prim>),
-    /// Primitives in SIMD blocks per leaf, and the primitive of each slot.
-    Wide4(Bvh4, LeafBlocks, Vec<PrimRef>),
+    /// A 4-wide tree.
+    Wide4(Wide<4>),
+    /// An 8-wide tree.
+    Wide8(Wide<8>),
+}
+
+/// A wide tree with primitives in SIMD blocks per leaf, and the primitive
+/// of each slot.
+#[derive(Clone, Debug)]
+struct Wide<const W: usize> {
+    bvh: WideBvh<W>,
+    leaves: LeafBlocks,
+    slot_refs: Vec<PrimRef>,
+}
+
+impl<const W: usize> Wide<W> {
+    /// Collapses `bvh` and packs the leaves; `refs` and `shape` give each
+    /// input primitive.
+    fn new(bvh: Bvh, refs: &[PrimRef], shape: impl Fn(PrimRef) -> Shape) -> Self {
+        let mut bvh = WideBvh::<W>::from_binary(bvh);
+        bvh.pad_leaves(4);
+        let slot_refs: Vec<PrimRef> = bvh
+            .primitive_order()
+            .iter()
+            .map(|&id| refs.get(id as usize).copied().unwrap_or(PADDING_REF))
+            .collect();
+        let leaves = LeafBlocks::new(&slot_refs, shape);
+        Self {
+            bvh,
+            leaves,
+            slot_refs,
+        }
+    }
+
+    /// Bytes of the leaf data (blocks and slot references).
+    fn prim_bytes(&self) -> usize {
+        self.leaves.bytes() + self.slot_refs.len() * std::mem::size_of::<PrimRef>()
+    }
+
+    #[inline(always)]
+    fn closest<S: StatsSink>(
+        &self,
+        ray: &Ray,
+        q: &RayBoxQuery,
+        tri_ray: &TriangleRay,
+        stats: &mut S,
+    ) -> Option<Hit> {
+        let tr4 = TriangleRay4::new(tri_ray);
+        let prefetch = |first, count| self.leaves.prefetch(first, count);
+        let mut hit = LeafHit::default();
+        let test = |first, count, t_max| {
+            self.leaves
+                .closest(first, count, ray, &tr4, t_max, &mut hit)
+        };
+        let (slot, t) = self
+            .bvh
+            .closest_hit_leaves(q, ray.t_max, stats, prefetch, test)?;
+        Some(Hit {
+            t,
+            prim: self.slot_refs[slot as usize],
+            b1: hit.b1,
+            b2: hit.b2,
+        })
+    }
+
+    #[inline(always)]
+    fn occluded<S: StatsSink>(
+        &self,
+        ray: &Ray,
+        q: &RayBoxQuery,
+        tri_ray: &TriangleRay,
+        stats: &mut S,
+    ) -> bool {
+        let tr4 = TriangleRay4::new(tri_ray);
+        let prefetch = |first, count| self.leaves.prefetch(first, count);
+        let test = |first, count, t_max| self.leaves.any(first, count, ray, &tr4, t_max);
+        self.bvh.any_hit_leaves(q, ray.t_max, stats, prefetch, test)
+    }
 }
 
 /// One primitive in leaf order: triangle vertices, or a sphere stored as
@@ -167,12 +256,12 @@ impl Accel {
         )
     }
 
-    /// The build options used for a strategy and layout: the 4-wide layout
-    /// tests leaves four primitives at a time, so the SAH counts blocks of 4.
+    /// The build options used for a strategy and layout: the wide layouts
+    /// test leaves four primitives at a time, so the SAH counts blocks of 4.
     pub fn default_options(strategy: BuildStrategy, layout: Layout) -> BuildOptions {
         match layout {
             Layout::Binary => BuildOptions::with_strategy(strategy),
-            Layout::Wide4 => BuildOptions {
+            Layout::Wide4 | Layout::Wide8 => BuildOptions {
                 leaf_block: 4,
                 ..BuildOptions::with_strategy(strategy)
             },
@@ -237,22 +326,24 @@ impl Accel {
                 )
             }
             Layout::Wide4 => {
-                let mut wide = Bvh4::from_binary(bvh);
-                wide.pad_leaves(4);
-                let slot_refs: Vec<PrimRef> = wide
-                    .primitive_order()
-                    .iter()
-                    .map(|&id| refs.get(id as usize).copied().unwrap_or(PADDING_REF))
-                    .collect();
-                let leaves = LeafBlocks::new(&slot_refs, shape);
-                let pb = leaves.bytes() + slot_refs.len() * std::mem::size_of::<PrimRef>();
-                (
-                    wide.nodes().len(),
-                    wide.depth(),
-                    wide.bytes(),
-                    pb,
-                    Tree::Wide4(wide, leaves, slot_refs),
-                )
+                let w = Wide::<4>::new(bvh, &refs, shape);
+                let (n, d, b, p) = (
+                    w.bvh.nodes().len(),
+                    w.bvh.depth(),
+                    w.bvh.bytes(),
+                    w.prim_bytes(),
+                );
+                (n, d, b, p, Tree::Wide4(w))
+            }
+            Layout::Wide8 => {
+                let w = Wide::<8>::new(bvh, &refs, shape);
+                let (n, d, b, p) = (
+                    w.bvh.nodes().len(),
+                    w.bvh.depth(),
+                    w.bvh.bytes(),
+                    w.prim_bytes(),
+                );
+                (n, d, b, p, Tree::Wide8(w))
             }
         };
         let info = AccelInfo {
@@ -289,7 +380,8 @@ impl Accel {
     pub fn validate(&self, boxes: &[Aabb]) -> Result<(), String> {
         match &self.tree {
             Tree::Binary(b, _) => b.validate(boxes),
-            Tree::Wide4(w, _, _) => w.validate(boxes),
+            Tree::Wide4(w) => w.bvh.validate(boxes),
+            Tree::Wide8(w) => w.bvh.validate(boxes),
         }
     }
 
@@ -332,21 +424,8 @@ impl Accel {
                     b2: bary.1,
                 })
             }
-            Tree::Wide4(bvh, leaves, slot_refs) => {
-                let tr4 = TriangleRay4::new(&tri_ray);
-                let prefetch = |first, count| leaves.prefetch(first, count);
-                let mut hit = LeafHit::default();
-                let test =
-                    |first, count, t_max| leaves.closest(first, count, ray, &tr4, t_max, &mut hit);
-                let (slot, t) = bvh.closest_hit_leaves(&q, ray.t_max, stats, prefetch, test)?;
-                let prim = slot_refs[slot as usize];
-                Some(Hit {
-                    t,
-                    prim,
-                    b1: hit.b1,
-                    b2: hit.b2,
-                })
-            }
+            Tree::Wide4(w) => w.closest(ray, &q, &tri_ray, stats),
+            Tree::Wide8(w) => w.closest(ray, &q, &tri_ray, stats),
         }
     }
 
@@ -363,12 +442,8 @@ impl Accel {
                 };
                 bvh.any_hit(&q, ray.t_max, stats, test)
             }
-            Tree::Wide4(bvh, leaves, _) => {
-                let tr4 = TriangleRay4::new(&tri_ray);
-                let prefetch = |first, count| leaves.prefetch(first, count);
-                let test = |first, count, t_max| leaves.any(first, count, ray, &tr4, t_max);
-                bvh.any_hit_leaves(&q, ray.t_max, stats, prefetch, test)
-            }
+            Tree::Wide4(w) => w.occluded(ray, &q, &tri_ray, stats),
+            Tree::Wide8(w) => w.occluded(ray, &q, &tri_ray, stats),
         }
     }
 

@@ -1,4 +1,4 @@
-//! Leaf primitives of the 4-wide BVH packed four to a block, so a leaf is
+//! Leaf primitives of the wide BVHs packed four to a block, so a leaf is
 //! tested with SIMD (the layout of Embree's `Triangle4`).
 
 use super::{Shape, PADDING_REF};
@@ -28,7 +28,7 @@ const _: () = assert!(std::mem::size_of::<Block>() == 160);
 
 /// The blocks of every leaf: block `k` holds slots `4k .. 4k + 4` of a
 /// tree whose leaves were padded to multiples of four
-/// ([`Bvh4::pad_leaves`]), so a leaf starting at slot `first` starts at
+/// ([`candela_bvh::WideBvh::pad_leaves`]), so a leaf starting at slot `first` starts at
 /// block `first / 4`.
 #[derive(Clone, Debug)]
 pub(super) struct LeafBlocks {

@@ -34,7 +34,7 @@ fn brute(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], ray: &Ray) -> Option<(f32,
 /// large that their f32 hit distance is only known to about 1e-2 (then a hit
 /// just before `t_max` may truly lie beyond it, and the BVH rightly prunes it).
 fn check(tris: &[[Vec3; 3]], spheres: &[(Vec3, f32)], rng: &mut Rng, label: &str, clip: bool) {
-    let layouts = [Layout::Binary, Layout::Wide4];
+    let layouts = [Layout::Binary, Layout::Wide4, Layout::Wide8];
     let strategies = [
         BuildStrategy::Sah,
         BuildStrategy::Median,
