@@ -46,6 +46,9 @@ mod fresnel;
 #[cfg(test)]
 mod furnace_tests;
 mod ggx;
+mod metallic_roughness;
+#[cfg(test)]
+mod metallic_roughness_tests;
 mod microfacet;
 #[cfg(test)]
 mod microfacet_tests;
@@ -66,6 +69,7 @@ mod thin_dielectric_tests;
 
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
+pub use metallic_roughness::MetallicRoughness;
 pub use plastic::Plastic;
 
 use rough_dielectric::RoughDielectric;
@@ -179,6 +183,10 @@ pub enum Bsdf {
         /// Imaginary part (extinction coefficient), per channel.
         k: Vec3,
     },
+    /// The glTF 2.0 metallic-roughness model: Lambert base and GGX
+    /// specular with Schlick Fresnel, mixed by metalness, with glass-like
+    /// transmission (see `metallic_roughness.rs`).
+    MetallicRoughness(MetallicRoughness),
 }
 
 impl Bsdf {
@@ -193,6 +201,7 @@ impl Bsdf {
             Bsdf::RoughGlass { .. } => rough_dielectric::FLAGS,
             Bsdf::Plastic(_) => plastic::FLAGS,
             Bsdf::Microfacet { .. } => microfacet::FLAGS,
+            Bsdf::MetallicRoughness(m) => m.flags(),
         }
     }
 
@@ -217,6 +226,7 @@ impl Bsdf {
                 eta,
                 k,
             } => microfacet::f(distribution, eta, k, wo, wi),
+            Bsdf::MetallicRoughness(m) => m.f(wo, wi),
         }
     }
 
@@ -247,6 +257,7 @@ impl Bsdf {
                 eta,
                 k,
             } => microfacet::sample(distribution, eta, k, wo, u2),
+            Bsdf::MetallicRoughness(m) => m.sample(wo, u1, u2),
         }
     }
 
@@ -262,6 +273,7 @@ impl Bsdf {
             Bsdf::RoughGlass { .. } => self.rough_dielectric().map_or(0.0, |b| b.pdf(wo, wi)),
             Bsdf::Plastic(plastic) => plastic.pdf(wo, wi),
             Bsdf::Microfacet { distribution, .. } => microfacet::pdf(distribution, wo, wi),
+            Bsdf::MetallicRoughness(m) => m.pdf(wo, wi),
         }
     }
 
@@ -278,6 +290,7 @@ impl Bsdf {
             | Bsdf::RoughGlass { transmittance, .. } => transmittance,
             Bsdf::Plastic(plastic) => plastic.diffuse(),
             Bsdf::Microfacet { eta, k, .. } => fresnel::fresnel_conductor(1.0, eta, k),
+            Bsdf::MetallicRoughness(m) => m.albedo(),
         }
     }
 }

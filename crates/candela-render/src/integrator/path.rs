@@ -20,6 +20,7 @@ use super::direct::{bsdf_hit_weight, estimate_direct, LightingMode};
 use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::{Frame, Ray};
+use crate::shading::{scatter_allowed, shading_frame};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
@@ -78,7 +79,7 @@ pub fn path_radiance(
     let mut prev: Option<PrevVertex> = None;
     let mut depth = 0u32;
     loop {
-        let Some(hit) = scene.intersect(&ray, &mut ctx.rays.traversal) else {
+        let Some(hit) = scene.intersect_visible(&ray, &mut ctx.rays.traversal) else {
             if settings.bounces.contains(&depth) {
                 l += beta * escaped_radiance(scene, &ray, prev, settings);
             }
@@ -89,7 +90,7 @@ pub fn path_radiance(
             aov.record(&hit, material);
         }
         if settings.bounces.contains(&depth) && hit.front_face {
-            if let Some(le) = material.emission {
+            if let Some(le) = material.emission_at(hit.uv) {
                 l += beta * le * emitter_weight(scene, &ray, &hit, prev, settings);
             }
         }
@@ -99,7 +100,7 @@ pub fn path_radiance(
         let Some(bsdf) = material.bsdf_at(&hit) else {
             break; // a pure emitter absorbs
         };
-        let frame = Frame::from_normal(hit.ns);
+        let frame = shading_frame(scene, &hit, material);
         if !bsdf.flags().is_specular() && settings.bounces.contains(&(depth + 1)) {
             l += beta
                 * estimate_direct(
@@ -120,7 +121,7 @@ pub fn path_radiance(
         // A direction on the wrong side of the true surface would leak
         // through it (shading normals bend, geometry does not).
         let transmits = s.flags.is_transmission();
-        if (wi.dot(hit.ng) > 0.0) == transmits {
+        if !scatter_allowed(hit.ng, wi, frame.to_local(hit.wo), s.wi) {
             break;
         }
         beta *= s.f * s.wi.z.abs() / s.pdf;
@@ -170,6 +171,10 @@ fn refraction_eta2(bsdf: &Bsdf, wo: Vec3) -> f32 {
     match *bsdf {
         Bsdf::Glass { ior, .. } | Bsdf::Refraction { ior, .. } | Bsdf::RoughGlass { ior, .. } => {
             let eta = if wo.z > 0.0 { ior } else { 1.0 / ior };
+            eta * eta
+        }
+        Bsdf::MetallicRoughness(m) => {
+            let eta = if wo.z > 0.0 { m.ior() } else { 1.0 / m.ior() };
             eta * eta
         }
         // A thin pane passes light straight through: no change of medium.

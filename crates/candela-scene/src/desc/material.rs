@@ -103,7 +103,8 @@ impl TextureRef {
 pub enum TextureSlot {
     /// Base colour: the BSDF's albedo, reflectance or transmittance.
     Color,
-    /// Roughness (a dielectric's `roughness`, a conductor's `alpha`).
+    /// Roughness (a dielectric's `roughness`, a conductor's `alpha`, the
+    /// metallic-roughness model's perceptual roughness).
     Roughness,
     /// Metalness in [0, 1]; 0 when no texture says otherwise.
     Metalness,
@@ -163,6 +164,11 @@ pub struct TextureSlots {
     pub emission: Option<TextureRef>,
     /// Opacity.
     pub opacity: Option<TextureRef>,
+    /// How the opacity slot's value is read: `None` as a coverage fraction
+    /// (a point of opacity a is kept with probability a, glTF `BLEND`),
+    /// `Some(c)` as a mask (opaque where the value is at least c, cut out
+    /// below: glTF `MASK` with its `alphaCutoff`).
+    pub opacity_cutoff: Option<f32>,
 }
 
 impl TextureSlots {
@@ -298,6 +304,21 @@ pub enum BsdfDesc {
     },
     /// Black: absorbs everything (the BSDF of a pure emitter).
     Black,
+    /// The glTF 2.0 metallic-roughness model (Lambert base, GGX specular
+    /// with Schlick Fresnel, mixed by metalness) with
+    /// `KHR_materials_transmission` and `KHR_materials_ior`.
+    MetallicRoughness {
+        /// Base colour (linear), per channel in [0, 1].
+        base_color: Vec3,
+        /// Metalness in [0, 1].
+        metallic: f32,
+        /// Perceptual roughness in [0, 1] (α = roughness²).
+        roughness: f32,
+        /// Fraction of the dielectric part that is transmitted, in [0, 1].
+        transmission: f32,
+        /// Index of refraction (1.5 by default).
+        ior: f32,
+    },
 }
 
 /// Microfacet normal distributions.

@@ -1,0 +1,89 @@
+//! From a hit and its material to what the integrators shade with: the
+//! textured BSDF, the shading frame (normal maps), the emitted radiance,
+//! and whether the surface is there at all (opacity cut-outs).
+//!
+//! - [`textures`]: every texture slot read at the hit's `uv`.
+//! - [`normal_map`]: tangent-space normal maps and the shading-frame rule
+//!   that never lets a sampled direction leak through the geometric
+//!   surface (bend the mapped normal toward the viewer; the geometric
+//!   normal decides reflection vs transmission: [`scatter_allowed`]).
+//! - [`opacity`]: cut-outs, applied by the visibility queries
+//!   (`scene/visibility.rs`) to camera, bounce and shadow rays alike.
+
+pub mod normal_map;
+pub mod opacity;
+pub mod textures;
+
+pub use textures::MaterialTextures;
+
+use crate::geometry::Frame;
+use crate::material::Material;
+use crate::scene::Scene;
+use crate::shape::{PrimKind, SurfaceHit};
+use glam::{Vec2, Vec3};
+use std::f32::consts::{PI, TAU};
+
+/// The frame a BSDF is evaluated in at `hit`: around the shading normal,
+/// perturbed by the material's normal map (and bent by the rule of
+/// [`normal_map`]) when it has one. Without a normal map this is exactly
+/// `Frame::from_normal(hit.ns)`.
+pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Frame {
+    let Some(map) = &material.textures.normal else {
+        return Frame::from_normal(hit.ns);
+    };
+    let (dpdu, dpdv) = uv_derivatives(scene, hit);
+    let texel = map.image.lookup(hit.uv);
+    let n = normal_map::mapped_normal(hit.ns, dpdu, dpdv, texel, map.scale);
+    if n == hit.ns {
+        return Frame::from_normal(hit.ns);
+    }
+    Frame::from_normal(normal_map::keep_viewer_above(n, hit.ns, hit.wo))
+}
+
+/// Rule 2 of [`normal_map`]: a scattered direction `wi` counts only if its
+/// side of the geometric surface (normal `ng`, facing `wo`) agrees with its
+/// side in the shading frame (`wo_local`, `wi_local`): reflection stays on
+/// the viewer's side of the true surface, transmission crosses it.
+pub fn scatter_allowed(ng: Vec3, wi: Vec3, wo_local: Vec3, wi_local: Vec3) -> bool {
+    let geometric_reflection = wi.dot(ng) > 0.0;
+    let shading_reflection = wo_local.z * wi_local.z > 0.0;
+    geometric_reflection == shading_reflection
+}
+
+/// dp/du and dp/dv at `hit`: a triangle's from its corners and UVs (its
+/// barycentric parametrisation when it has no UVs or they are
+/// degenerate), a sphere's from its (u, v) = (φ/2π, θ/π) mapping.
+pub fn uv_derivatives(scene: &Scene, hit: &SurfaceHit) -> (Vec3, Vec3) {
+    let i = hit.prim.index() as usize;
+    match hit.prim.kind() {
+        PrimKind::Triangle => {
+            let tris = &scene.geometry.triangles;
+            let [p0, p1, p2] = tris.corners(i);
+            let (e1, e2) = (p1 - p0, p2 - p0);
+            let ti = tris.uv_indices[i];
+            let uv = if ti[0] == u32::MAX {
+                [Vec2::ZERO, Vec2::X, Vec2::Y]
+            } else {
+                ti.map(|k| tris.uvs[k as usize])
+            };
+            let (d1, d2) = (uv[1] - uv[0], uv[2] - uv[0]);
+            let det = d1.x * d2.y - d1.y * d2.x;
+            if det.abs() < 1e-12 || !det.is_finite() {
+                return (e1, e2);
+            }
+            let inv = 1.0 / det;
+            ((d2.y * e1 - d1.y * e2) * inv, (d1.x * e2 - d2.x * e1) * inv)
+        }
+        PrimKind::Sphere => {
+            // q = (sin θ cos φ, cos θ, sin θ sin φ), u = φ/2π, v = θ/π.
+            let s = &scene.geometry.spheres[i];
+            let q = (hit.p - s.center).normalize_or(Vec3::Y);
+            let (cos_t, sin_t) = (q.y, (1.0 - q.y * q.y).max(0.0).sqrt());
+            let (sin_p, cos_p) = q.z.atan2(q.x).sin_cos();
+            (
+                Vec3::new(-sin_p, 0.0, cos_p) * (TAU * s.radius * sin_t),
+                Vec3::new(cos_t * cos_p, -sin_t, cos_t * sin_p) * (PI * s.radius),
+            )
+        }
+    }
+}
