@@ -18,9 +18,9 @@
 
 use super::direct::{bsdf_hit_weight, estimate_direct, LightingMode};
 use super::{FirstHitAov, ThreadContext};
-use crate::bsdf::{Bsdf, BsdfSample};
-use crate::geometry::{Frame, Ray};
-use crate::shading::{scatter_allowed, shading_frame};
+use crate::bsdf::Bsdf;
+use crate::geometry::Ray;
+use crate::shading::{sample_scatter, shading_frame};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::shape::SurfaceHit;
@@ -114,16 +114,14 @@ pub fn path_radiance(
                     ctx,
                 );
         }
-        let Some(s) = sample_direction(&bsdf, &frame, &hit, sampler) else {
+        // A direction on the wrong side of the true surface would leak
+        // through it (shading normals bend, geometry does not): the
+        // sample is rejected (`shading::scatter_allowed`).
+        let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
+        let Some((wi, s)) = sample_scatter(&bsdf, &frame, hit.ng, hit.wo, u1, u2) else {
             break;
         };
-        let wi = frame.to_world(s.wi);
-        // A direction on the wrong side of the true surface would leak
-        // through it (shading normals bend, geometry does not).
         let transmits = s.flags.is_transmission();
-        if !scatter_allowed(hit.ng, wi, frame.to_local(hit.wo), s.wi) {
-            break;
-        }
         beta *= s.f * s.wi.z.abs() / s.pdf;
         if transmits {
             eta_scale *= refraction_eta2(&bsdf, frame.to_local(hit.wo));
@@ -148,20 +146,6 @@ pub fn path_radiance(
     }
     ctx.path_segments += depth as u64 + 1;
     l
-}
-
-/// The next direction, by the BSDF's own importance sampling (in every
-/// lighting mode, as CS184 continues its paths).
-fn sample_direction(
-    bsdf: &Bsdf,
-    frame: &Frame,
-    hit: &SurfaceHit,
-    sampler: &mut Sampler,
-) -> Option<BsdfSample> {
-    let wo = frame.to_local(hit.wo);
-    let u1 = sampler.next_1d();
-    let u2 = sampler.next_2d();
-    bsdf.sample(wo, u1, u2).filter(|s| s.pdf > 0.0)
 }
 
 /// The squared relative index of refraction (far side over near side) of a

@@ -14,8 +14,12 @@ pub mod normal_map;
 pub mod opacity;
 pub mod textures;
 
+#[cfg(test)]
+mod leak_tests;
+
 pub use textures::MaterialTextures;
 
+use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::Frame;
 use crate::material::Material;
 use crate::scene::Scene;
@@ -48,6 +52,23 @@ pub fn scatter_allowed(ng: Vec3, wi: Vec3, wo_local: Vec3, wi_local: Vec3) -> bo
     let geometric_reflection = wi.dot(ng) > 0.0;
     let shading_reflection = wo_local.z * wi_local.z > 0.0;
     geometric_reflection == shading_reflection
+}
+
+/// Samples the BSDF in `frame` for the world direction `wo` and returns the
+/// world direction with the sample, or `None` when it carries nothing or
+/// rule 2 rejects it (`ng` the geometric normal facing `wo`).
+pub fn sample_scatter(
+    bsdf: &Bsdf,
+    frame: &Frame,
+    ng: Vec3,
+    wo: Vec3,
+    u1: f32,
+    u2: Vec2,
+) -> Option<(Vec3, BsdfSample)> {
+    let wo_local = frame.to_local(wo);
+    let s = bsdf.sample(wo_local, u1, u2).filter(|s| s.pdf > 0.0)?;
+    let wi = frame.to_world(s.wi);
+    scatter_allowed(ng, wi, wo_local, s.wi).then_some((wi, s))
 }
 
 /// dp/du and dp/dv at `hit`: a triangle's from its corners and UVs (its
