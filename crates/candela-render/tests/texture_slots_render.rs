@@ -5,9 +5,8 @@
 //!   texture's texel mean (wrap-around bilinear filtering preserves it);
 //! - **cut-outs**: a black quad filling the view in front of the same sky
 //!   shows the sky exactly where it is cut out, so the image mean is the
-//!   open fraction: 1/2 for a 2 × 2 checker mask (bilinear between 0 and 1
-//!   and a cutoff of 1/2 split every cell in half), 1 − mean(alpha) for
-//!   stochastic opacity;
+//!   open fraction: 2/3 for a (1, 0, 0) stripe mask with cutoff 1/2, 1 −
+//!   mean(alpha) for stochastic opacity;
 //! - **a textured lamp seen through a cut-out**: hemisphere, light and MIS
 //!   estimators agree (block z-test) on a floor lit by an emission-textured
 //!   quad through a stochastic-opacity screen, so light sampling evaluates
@@ -167,13 +166,14 @@ fn a_textured_mirror_reflects_its_texture() {
 #[test]
 fn cut_outs_let_the_open_fraction_through() {
     let dir = candela_testkit::TempDir::new("cut-outs");
-    // A 2 × 2 checker as a mask: half open.
-    let checker = dir.join("checker.exr");
-    grey_exr(&checker, 2, 2, &[1.0, 0.0, 0.0, 1.0]);
+    // A 3 × 1 mask (1, 0, 0): bilinear values reach the cutoff 1/2 within
+    // half a texel of the opaque texel's centre, so one third is opaque.
+    let stripes = dir.join("stripes.exr");
+    grey_exr(&stripes, 3, 1, &[1.0, 0.0, 0.0]);
     let mut masked = black();
-    masked.textures.opacity = Some(TextureRef::new(&checker, ColorSpace::Linear));
+    masked.textures.opacity = Some(TextureRef::new(&stripes, ColorSpace::Linear));
     masked.textures.opacity_cutoff = Some(0.5);
-    assert_image_mean("mask", &build(&view_filling(masked), true), 1, 0.5);
+    assert_image_mean("mask", &build(&view_filling(masked), true), 1, 2.0 / 3.0);
     // Stochastic opacity: open with probability 1 − alpha.
     let alphas = [0.1f32, 0.9, 0.5, 0.3, 0.7, 0.2, 1.0, 0.0, 0.6];
     let coverage = dir.join("coverage.exr");
