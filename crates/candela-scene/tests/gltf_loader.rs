@@ -319,3 +319,20 @@ fn sparse_accessors_overwrite_their_base() {
     let s = load_ok(&write("sparse.gltf", &text)).scene;
     assert_eq!(s.meshes[0].positions[2], Vec3::new(0.0, 2.0, 0.0));
 }
+
+#[test]
+fn the_projects_textured_scene_loads_with_flipped_uvs_and_every_slot() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/gltf/textured.gltf");
+    let l = load_ok(&path);
+    let s = &l.scene;
+    assert_eq!(s.cameras.len(), 2, "front and side");
+    // glTF's (u, v) = (0, 0) is the image's top-left: Candela's (0, 1).
+    let bricks = &s.meshes[0];
+    assert_eq!(bricks.uvs[0], glam::Vec2::new(0.0, 1.0));
+    let t = &s.materials[0].textures;
+    assert!(t.get(TextureSlot::Color).is_some() && t.get(TextureSlot::Normal).is_some());
+    assert_eq!(t.get(TextureSlot::Opacity).and_then(|o| o.channel), Some(3));
+    assert_eq!(t.opacity_cutoff, Some(0.5));
+    assert!(matches!(s.materials[1].bsdf, BsdfDesc::MetallicRoughness { metallic, .. } if metallic == 1.0));
+    assert!(l.report.warnings.is_empty(), "{}", l.report);
+}
