@@ -113,7 +113,11 @@ fn every_texture_slot_is_read_or_reported_by_name() {
     let mut lamp = desc.clone();
     lamp.bsdf = BsdfDesc::Black;
     let (m, unsupported) = Material::from_desc(&lamp, &mut cache);
-    assert_eq!(unsupported.len(), 4, "colour, roughness, metalness, normal: {unsupported:?}");
+    assert_eq!(
+        unsupported.len(),
+        5,
+        "colour, roughness, metalness, normal, bump: {unsupported:?}"
+    );
     assert!(m.emission.is_some(), "the emission texture makes it a lamp");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -32,12 +32,23 @@ use std::f32::consts::{PI, TAU};
 /// [`normal_map`]) when it has one. Without a normal map this is exactly
 /// `Frame::from_normal(hit.ns)`.
 pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Frame {
-    let Some(map) = &material.textures.normal else {
+    let t = &material.textures;
+    if t.normal.is_none() && t.bump.is_none() {
         return Frame::from_normal(hit.ns);
-    };
+    }
     let (dpdu, dpdv) = uv_derivatives(scene, hit);
-    let texel = map.image.lookup(hit.uv);
-    let n = normal_map::mapped_normal(hit.ns, dpdu, dpdv, texel, map.scale);
+    let mut n = hit.ns;
+    if let Some(map) = &t.normal {
+        n = normal_map::mapped_normal(n, dpdu, dpdv, map.image.lookup(hit.uv), map.scale);
+    }
+    if let Some(bump) = &t.bump {
+        let (w, h) = bump.image.size();
+        let (du, dv) = (0.5 / w as f32, 0.5 / h as f32);
+        let height = |u: f32, v: f32| bump.value(hit.uv + Vec2::new(u, v), 0);
+        let dhdu = (height(du, 0.0) - height(-du, 0.0)) / (2.0 * du);
+        let dhdv = (height(0.0, dv) - height(0.0, -dv)) / (2.0 * dv);
+        n = normal_map::bumped_normal(n, dpdu, dpdv, dhdu, dhdv);
+    }
     if n == hit.ns {
         return Frame::from_normal(hit.ns);
     }

@@ -1,4 +1,13 @@
-//! Tangent-space normal maps and the shading frame they give.
+//! Tangent-space normal maps, bump (height) maps, and the shading frame
+//! they give.
+//!
+//! A bump map h(u, v) (the slot's value times its scale, in scene units)
+//! displaces the surface along its shading normal n: p' = p + h n, so
+//! ∂p'/∂u ≈ ∂p/∂u + (∂h/∂u) n (the term in ∂n/∂u is dropped, as pbrt
+//! does for small displacements), likewise for v, and the bumped normal is
+//! ∂p'/∂u × ∂p'/∂v turned to the side of n (Blinn 1978, "Simulation of
+//! Wrinkled Surfaces"). ∂h/∂u and ∂h/∂v are central differences of the
+//! bilinear texture half a texel either side.
 //!
 //! A texel (r, g, b) is the normal (2r − 1, 2g − 1, 2b − 1) in the frame
 //! (T, B, N): N the interpolated shading normal, T the surface's dp/du made
@@ -64,6 +73,21 @@ pub fn mapped_normal(ns: Vec3, dpdu: Vec3, dpdv: Vec3, texel: Vec3, scale: f32) 
         .unwrap_or(ns)
 }
 
+/// The shading normal of a surface of normal `ns` and UV derivatives
+/// `dpdu`, `dpdv` displaced along `ns` by a height of UV gradient
+/// (`dhdu`, `dhdv`); `ns` itself, exactly, where the height is flat.
+pub fn bumped_normal(ns: Vec3, dpdu: Vec3, dpdv: Vec3, dhdu: f32, dhdv: f32) -> Vec3 {
+    if dhdu == 0.0 && dhdv == 0.0 {
+        return ns;
+    }
+    let n = (dpdu + ns * dhdu).cross(dpdv + ns * dhdv);
+    match n.try_normalize() {
+        Some(n) if n.dot(ns) < 0.0 => -n,
+        Some(n) => n,
+        None => ns,
+    }
+}
+
 /// Rule 1 of the module docs: `n` rotated toward `wo` (no change when `wo`
 /// already sees it at a cosine of at least min(`MIN_COS_VIEW`, cos(wo,
 /// `ns`))), keeping `wo` on the side of `n` it is on of the unmapped `ns`.
@@ -98,6 +122,23 @@ mod tests {
         // The scale shrinks the tilt.
         let half = mapped_normal(flat, dpdu, dpdv, Vec3::new(1.0, 0.5, 1.0), 0.5);
         assert!((half - Vec3::new(0.5, 0.0, 1.0).normalize()).length() < 1e-6);
+    }
+
+    #[test]
+    fn a_height_ramp_tilts_the_normal_by_its_slope() {
+        // h = a·u on the plane p = (u, v, 0): the surface z = a·x, whose
+        // normal is (−a, 0, 1)/√(1 + a²).
+        let a = 0.6;
+        let n = bumped_normal(Vec3::Z, Vec3::X, Vec3::Y, a, 0.0);
+        assert!((n - Vec3::new(-a, 0.0, 1.0).normalize()).length() < 1e-6, "{n}");
+        // With UVs stretched (dp/du = 2x), the same height slope per unit u
+        // is half as steep in space.
+        let n = bumped_normal(Vec3::Z, 2.0 * Vec3::X, Vec3::Y, a, 0.0);
+        assert!((n - Vec3::new(-a / 2.0, 0.0, 1.0).normalize()).length() < 1e-6);
+        // Mirrored UVs (dp/dv = −y) keep the normal on the side of ns.
+        let n = bumped_normal(Vec3::Z, Vec3::X, -Vec3::Y, 0.0, a);
+        assert!((n - Vec3::new(0.0, a, 1.0).normalize()).length() < 1e-6, "{n}");
+        assert_eq!(bumped_normal(Vec3::Z, Vec3::X, Vec3::Y, 0.0, 0.0), Vec3::Z);
     }
 
     #[test]

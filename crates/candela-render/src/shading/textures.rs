@@ -9,7 +9,7 @@
 //! | colour | diffuse albedo; mirror reflectance; glass, refraction, thin and rough glass transmittance (the tint); plastic base; glTF base colour; a rough conductor's normal-incidence reflectance F0 (η = 1, k = 2√(F0/(1−F0)), exact for F0) |
 //! | roughness (R, or the slot's channel) | rough conductor and rough glass α; smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF perceptual roughness |
 //! | metalness (B by default, glTF's channel) | glTF metalness |
-//! | normal map | the shading normal (`normal_map.rs`) |
+//! | normal map, bump map | the shading normal (`normal_map.rs`) |
 //! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
 //! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
 //!
@@ -42,6 +42,8 @@ pub struct MaterialTextures {
     pub metalness: Option<SlotTexture>,
     /// Tangent-space normal map.
     pub normal: Option<SlotTexture>,
+    /// Bump (height) map.
+    pub bump: Option<SlotTexture>,
     /// Emitted radiance.
     pub emission: Option<SlotTexture>,
     /// Opacity.
@@ -81,6 +83,7 @@ impl MaterialTextures {
             TextureSlot::Roughness => &mut self.roughness,
             TextureSlot::Metalness => &mut self.metalness,
             TextureSlot::Normal => &mut self.normal,
+            TextureSlot::Bump => &mut self.bump,
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
         }
@@ -212,7 +215,7 @@ fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
     match (slot, bsdf) {
         (TextureSlot::Emission | TextureSlot::Opacity, _) => true,
         (_, None) => false,
-        (TextureSlot::Color | TextureSlot::Normal, Some(_)) => true,
+        (TextureSlot::Color | TextureSlot::Normal | TextureSlot::Bump, Some(_)) => true,
         (TextureSlot::Metalness, Some(b)) => matches!(b, Bsdf::MetallicRoughness(_)),
         (TextureSlot::Roughness, Some(b)) => !matches!(
             b,

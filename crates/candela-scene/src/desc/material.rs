@@ -110,6 +110,10 @@ pub enum TextureSlot {
     Metalness,
     /// Tangent-space normal map; the geometry's shading normal otherwise.
     Normal,
+    /// Bump (height) map: the shading normal of the surface displaced by
+    /// the value (times the scale) along its normal, in scene units per
+    /// unit of UV (OBJ `bump`/`map_Bump`, Mitsuba `bumpmap`).
+    Bump,
     /// Emitted radiance, replacing [`MaterialDesc::emission`].
     Emission,
     /// Opacity in [0, 1] (cut-outs); 1 when no texture says otherwise.
@@ -118,11 +122,12 @@ pub enum TextureSlot {
 
 impl TextureSlot {
     /// Every slot, in declaration order.
-    pub const ALL: [TextureSlot; 6] = [
+    pub const ALL: [TextureSlot; 7] = [
         TextureSlot::Color,
         TextureSlot::Roughness,
         TextureSlot::Metalness,
         TextureSlot::Normal,
+        TextureSlot::Bump,
         TextureSlot::Emission,
         TextureSlot::Opacity,
     ];
@@ -134,6 +139,7 @@ impl TextureSlot {
             TextureSlot::Roughness => "roughness",
             TextureSlot::Metalness => "metalness",
             TextureSlot::Normal => "normal map",
+            TextureSlot::Bump => "bump map",
             TextureSlot::Emission => "emission",
             TextureSlot::Opacity => "opacity",
         }
@@ -160,6 +166,8 @@ pub struct TextureSlots {
     pub metalness: Option<TextureRef>,
     /// Tangent-space normal map.
     pub normal: Option<TextureRef>,
+    /// Bump (height) map.
+    pub bump: Option<TextureRef>,
     /// Emitted radiance.
     pub emission: Option<TextureRef>,
     /// Opacity.
@@ -195,6 +203,7 @@ impl TextureSlots {
             TextureSlot::Roughness => &self.roughness,
             TextureSlot::Metalness => &self.metalness,
             TextureSlot::Normal => &self.normal,
+            TextureSlot::Bump => &self.bump,
             TextureSlot::Emission => &self.emission,
             TextureSlot::Opacity => &self.opacity,
         }
@@ -206,6 +215,7 @@ impl TextureSlots {
             TextureSlot::Roughness => &mut self.roughness,
             TextureSlot::Metalness => &mut self.metalness,
             TextureSlot::Normal => &mut self.normal,
+            TextureSlot::Bump => &mut self.bump,
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
         }
