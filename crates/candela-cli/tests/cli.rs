@@ -234,14 +234,28 @@ fn camera_n_picks_the_files_nth_camera_and_refuses_one_it_lacks() {
     let dir = scratch("camera-n");
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/gltf/textured.gltf");
     let render = |camera: &str, out: &Path| {
-        candela(&["-s", "1", "-q", "--camera", camera, "-f", path(out), path(&scene)])
+        candela(&[
+            "-s",
+            "1",
+            "-q",
+            "--camera",
+            camera,
+            "-f",
+            path(out),
+            path(&scene),
+        ])
     };
     let images: Vec<_> = ["file", "0", "1"]
         .iter()
         .map(|camera| {
             let out = dir.join(format!("camera-{camera}.png"));
             let run = render(camera, &out);
-            assert_eq!(run.status.code(), Some(0), "{}", String::from_utf8_lossy(&run.stderr));
+            assert_eq!(
+                run.status.code(),
+                Some(0),
+                "{}",
+                String::from_utf8_lossy(&run.stderr)
+            );
             read_png(&out).expect("image")
         })
         .collect();
@@ -252,6 +266,9 @@ fn camera_n_picks_the_files_nth_camera_and_refuses_one_it_lacks() {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(2), "{stderr}");
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
-    assert!(stderr.contains("--camera") && stderr.contains("2 camera(s)"), "{stderr}");
+    assert!(
+        stderr.contains("--camera") && stderr.contains("2 camera(s)"),
+        "{stderr}"
+    );
     assert!(!out.exists());
 }

@@ -26,7 +26,9 @@ use candela_render::integrator::{IntegratorSettings, LightingMode};
 use candela_render::light::{EnvironmentMap, EnvironmentOptions};
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
-use candela_scene::{BsdfDesc, ColorSpace, InstanceDesc, MaterialDesc, MeshDesc, SceneDesc, TextureRef};
+use candela_scene::{
+    BsdfDesc, ColorSpace, InstanceDesc, MaterialDesc, MeshDesc, SceneDesc, TextureRef,
+};
 use common::agreement::{assert_estimators_agree, Agreement};
 use glam::{Vec2, Vec3};
 use std::path::Path;
@@ -84,7 +86,9 @@ fn build(desc: &SceneDesc, sky: bool) -> Scene {
         height: SIZE,
         camera_mode: CameraMode::File,
         environment: sky.then(|| {
-            Arc::new(EnvironmentMap::from_image(&white, &EnvironmentOptions::default()).expect("sky"))
+            Arc::new(
+                EnvironmentMap::from_image(&white, &EnvironmentOptions::default()).expect("sky"),
+            )
         }),
         ..Default::default()
     };
@@ -125,7 +129,10 @@ fn assert_image_mean(label: &str, scene: &Scene, max_depth: u32, expected: f64) 
     let m = means.iter().sum::<f64>() / k;
     let se = (means.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (k - 1.0) / k).sqrt();
     eprintln!("{label}: {m:.5} ± {se:.5}, expected {expected:.5}");
-    assert!((m - expected).abs() < 4.5 * se + 1e-5, "{label}: {m} ± {se} vs {expected}");
+    assert!(
+        (m - expected).abs() < 4.5 * se + 1e-5,
+        "{label}: {m} ± {se} vs {expected}"
+    );
 }
 
 /// Writes a one-channel (grey) EXR of `w × h` values, row 0 at the top.
@@ -135,20 +142,16 @@ fn grey_exr(path: &Path, w: usize, h: usize, values: &[f32]) {
 }
 
 fn black() -> MaterialDesc {
-    common::material(
-        "black",
-        BsdfDesc::Diffuse {
-            albedo: Vec3::ZERO,
-        },
-        None,
-    )
+    common::material("black", BsdfDesc::Diffuse { albedo: Vec3::ZERO }, None)
 }
 
 #[test]
 fn a_textured_mirror_reflects_its_texture() {
     let dir = candela_testkit::TempDir::new("textured-mirror");
     let path = dir.join("tint.exr");
-    let values: Vec<f32> = (0..16).map(|k| 0.05 + 0.9 * ((k * 7) % 16) as f32 / 15.0).collect();
+    let values: Vec<f32> = (0..16)
+        .map(|k| 0.05 + 0.9 * ((k * 7) % 16) as f32 / 15.0)
+        .collect();
     grey_exr(&path, 4, 4, &values);
     let mut mirror = common::material(
         "mirror",
@@ -188,7 +191,9 @@ fn cut_outs_let_the_open_fraction_through() {
 fn a_textured_lamp_through_a_cut_out_screen_agrees_between_estimators() {
     let dir = candela_testkit::TempDir::new("textured-lamp");
     let glow = dir.join("glow.exr");
-    let glow_values: Vec<f32> = (0..16).map(|k| 0.2 + 3.0 * ((k * 5) % 16) as f32 / 15.0).collect();
+    let glow_values: Vec<f32> = (0..16)
+        .map(|k| 0.2 + 3.0 * ((k * 5) % 16) as f32 / 15.0)
+        .collect();
     grey_exr(&glow, 4, 4, &glow_values);
     let holes = dir.join("holes.exr");
     grey_exr(&holes, 3, 2, &[0.0, 1.0, 0.4, 0.8, 0.1, 1.0]);

@@ -322,7 +322,8 @@ fn sparse_accessors_overwrite_their_base() {
 
 #[test]
 fn the_projects_textured_scene_loads_with_flipped_uvs_and_every_slot() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/gltf/textured.gltf");
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/gltf/textured.gltf");
     let l = load_ok(&path);
     let s = &l.scene;
     assert_eq!(s.cameras.len(), 2, "front and side");
@@ -333,6 +334,8 @@ fn the_projects_textured_scene_loads_with_flipped_uvs_and_every_slot() {
     assert!(t.get(TextureSlot::Color).is_some() && t.get(TextureSlot::Normal).is_some());
     assert_eq!(t.get(TextureSlot::Opacity).and_then(|o| o.channel), Some(3));
     assert_eq!(t.opacity_cutoff, Some(0.5));
-    assert!(matches!(s.materials[1].bsdf, BsdfDesc::MetallicRoughness { metallic, .. } if metallic == 1.0));
+    assert!(
+        matches!(s.materials[1].bsdf, BsdfDesc::MetallicRoughness { metallic, .. } if metallic == 1.0)
+    );
     assert!(l.report.warnings.is_empty(), "{}", l.report);
 }

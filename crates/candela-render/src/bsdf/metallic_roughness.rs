@@ -79,7 +79,13 @@ impl MetallicRoughness {
     /// A glTF material: base colour, metalness, perceptual roughness and
     /// transmission clamped to [0, 1] (NaN to 0), IOR to at least 1 (1.5
     /// when not finite).
-    pub fn new(base_color: Vec3, metallic: f32, roughness: f32, transmission: f32, ior: f32) -> Self {
+    pub fn new(
+        base_color: Vec3,
+        metallic: f32,
+        roughness: f32,
+        transmission: f32,
+        ior: f32,
+    ) -> Self {
         let unit = |v: f32| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
         Self {
             base_color: base_color.to_array().map(unit).into(),
@@ -278,10 +284,7 @@ fn luminance(c: Vec3) -> f32 {
 /// Mirrors the pair to the side where `wo.z > 0` (two-sided opaque lobes).
 fn to_upper(wo: Vec3, wi: Vec3) -> (Vec3, Vec3) {
     if wo.z < 0.0 {
-        (
-            Vec3::new(wo.x, wo.y, -wo.z),
-            Vec3::new(wi.x, wi.y, -wi.z),
-        )
+        (Vec3::new(wo.x, wo.y, -wo.z), Vec3::new(wi.x, wi.y, -wi.z))
     } else {
         (wo, wi)
     }

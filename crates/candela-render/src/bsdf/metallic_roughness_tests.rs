@@ -63,10 +63,7 @@ fn metallic_roughness_samples_are_consistent() {
         }
     }
     // Smooth (clamped to the minimum α) and black still sample consistently.
-    for bsdf in [
-        mr(Vec3::ONE, 1.0, 0.0, 0.0),
-        mr(Vec3::ZERO, 0.0, 0.5, 0.0),
-    ] {
+    for bsdf in [mr(Vec3::ONE, 1.0, 0.0, 0.0), mr(Vec3::ZERO, 0.0, 0.5, 0.0)] {
         assert_samples_consistent(&bsdf, Vec3::new(0.3, 0.1, 0.9).normalize());
     }
 }
@@ -78,7 +75,10 @@ fn opaque_metallic_roughness_is_reciprocal_and_two_sided() {
     let wi = Vec3::new(-0.7, 0.1, 0.3).normalize();
     for (_, bsdf) in cases().into_iter().take(3) {
         let (a, b) = (bsdf.f(wo, wi), bsdf.f(wi, wo));
-        assert!((a - b).abs().max_element() < 1e-5 * a.max_element().max(1.0), "{a} vs {b}");
+        assert!(
+            (a - b).abs().max_element() < 1e-5 * a.max_element().max(1.0),
+            "{a} vs {b}"
+        );
         assert_eq!(bsdf.f(wo, wi), bsdf.f(flip(wo), flip(wi)));
         assert_eq!(bsdf.f(wo, flip(wi)), Vec3::ZERO, "no transmission");
         assert!(!bsdf.flags().is_transmission());
@@ -126,4 +126,3 @@ fn metallic_roughness_white_furnace_stays_at_most_one() {
     let e = energy_albedo_by_sampling(&mr(Vec3::ONE, 0.0, 0.2, 0.0), Vec3::Z, 1.0, 40_000);
     assert!(e.mean.x > 0.95, "{:?}", e.mean);
 }
-

@@ -133,12 +133,12 @@ pub fn frame_scene(
         return Err(FramingError::Degenerate("image has zero size"));
     }
     let file = match mode {
-        CameraMode::Numbered(index) => Some(scene.cameras.get(index).ok_or(
-            FramingError::NoSuchCamera {
+        CameraMode::Numbered(index) => {
+            Some(scene.cameras.get(index).ok_or(FramingError::NoSuchCamera {
                 index,
                 count: scene.cameras.len(),
-            },
-        )?),
+            })?)
+        }
         _ => scene.cameras.first(),
     };
     let mut camera = match mode {

@@ -12,14 +12,14 @@
 
 use super::{luminance, LightSample};
 use crate::geometry::Frame;
-use crate::shading::MaterialTextures;
-use crate::shape::sphere_uv;
-use std::sync::Arc;
 use crate::sampling::warp::{
     square_to_uniform_cone, square_to_uniform_triangle, uniform_cone_pdf, Parallelogram,
 };
+use crate::shading::MaterialTextures;
+use crate::shape::sphere_uv;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 /// The geometry of an area light.
 #[derive(Clone, Debug, PartialEq)]
@@ -116,7 +116,11 @@ impl AreaLight {
                     Some(t) => t.at(b.x * t.uvs[0] + b.y * t.uvs[1] + (1.0 - b.x - b.y) * t.uvs[2]),
                     None => self.radiance,
                 };
-                (b.x * v[0] + b.y * v[1] + (1.0 - b.x - b.y) * v[2], *normal, l)
+                (
+                    b.x * v[0] + b.y * v[1] + (1.0 - b.x - b.y) * v[2],
+                    *normal,
+                    l,
+                )
             }
             AreaShape::Rect { shape, normal } => (shape.sample(u), *normal, self.radiance),
             AreaShape::Sphere { center, radius } => {

@@ -202,7 +202,8 @@ mod tests {
         let tri = Light::Area(AreaLight {
             shape: AreaShape::Triangle { v, normal },
             radiance: Vec3::ONE,
-         textured: None, });
+            textured: None,
+        });
         let set = LightSet::new(vec![tri.clone()], &[], 1.0);
         let mut hits = 0;
         for k in 0..64 {

@@ -85,7 +85,8 @@ fn triangle_light_sampling_matches_its_pdf() {
             normal: Vec3::ZERO,
         },
         radiance: Vec3::ONE,
-     textured: None, };
+        textured: None,
+    };
     // Emitting downward, toward the points below.
     let AreaShape::Triangle { v, .. } = light.shape else {
         unreachable!()
@@ -118,7 +119,8 @@ fn rectangle_light_sampling_matches_its_pdf() {
             normal: -Vec3::Y,
         },
         radiance: Vec3::ONE,
-     textured: None, };
+        textured: None,
+    };
     check_area_light("rectangle", light, &[Vec3::ZERO, Vec3::new(-1.0, 0.5, 0.3)]);
 }
 
@@ -130,7 +132,8 @@ fn sphere_light_sampling_matches_its_pdf() {
             radius: 0.4,
         },
         radiance: Vec3::ONE,
-     textured: None, };
+        textured: None,
+    };
     // Far away (a narrow cone) and close (a wide one).
     check_area_light(
         "sphere",
@@ -172,7 +175,8 @@ fn one_sided_lights_are_dark_from_behind() {
             normal: -Vec3::Y,
         },
         radiance: Vec3::ONE,
-     textured: None, });
+        textured: None,
+    });
     let above = Vec3::new(0.0, 2.0, 0.0);
     for i in 0..16 {
         let u = Vec2::new((i as f32 + 0.5) / 16.0, 0.37);
@@ -186,7 +190,8 @@ fn one_sided_lights_are_dark_from_behind() {
             radius: 1.0,
         },
         radiance: Vec3::ONE,
-     textured: None, });
+        textured: None,
+    });
     assert!(sphere
         .sample_li(Vec3::new(0.1, 0.0, 0.0), Vec2::splat(0.5))
         .is_none());

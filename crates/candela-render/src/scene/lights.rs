@@ -2,15 +2,15 @@
 //! emissive triangle and sphere.
 
 use super::Geometry;
+use crate::light::TexturedEmission;
 use crate::light::{
     AmbientLight, AreaLight, AreaShape, DirectionalLight, EnvironmentLight, EnvironmentMap, Light,
     LightSet, PointLight, SpotLight,
 };
-use crate::light::TexturedEmission;
 use crate::material::Material;
+use crate::sampling::warp::Parallelogram;
 use crate::shading::MaterialTextures;
 use crate::shape::{PrimKind, PrimRef};
-use crate::sampling::warp::Parallelogram;
 use candela_scene::{LightKind, SceneDesc};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
@@ -101,7 +101,8 @@ pub fn build_lights(
                     normal: normal.normalize_or(-Vec3::Y),
                 },
                 radiance,
-             textured: None, }),
+                textured: None,
+            }),
         });
     }
     if let Some(map) = environment {

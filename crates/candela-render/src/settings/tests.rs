@@ -232,12 +232,18 @@ fn the_camera_is_a_name_or_a_file_camera_number() {
     assert!(camera(json!(-1)).is_err());
     for mode in [CameraMode::Cs184, CameraMode::File, CameraMode::Numbered(3)] {
         assert_eq!(mode.to_string().parse::<CameraMode>().unwrap(), mode);
-        assert_eq!(serde_json::from_value::<CameraMode>(serde_json::to_value(mode).unwrap()).unwrap(), mode);
+        assert_eq!(
+            serde_json::from_value::<CameraMode>(serde_json::to_value(mode).unwrap()).unwrap(),
+            mode
+        );
     }
     let mut s = Settings::default();
     s.image.camera = CameraMode::Numbered(2);
     assert!(s.image.validate_for_scene(3).is_ok());
     let e = s.image.validate_for_scene(2).unwrap_err().to_string();
     assert!(e.contains("--camera") && e.contains("2 camera(s)"), "{e}");
-    assert!(ImageSettings::default().validate_for_scene(0).is_ok(), "cs184 needs no camera");
+    assert!(
+        ImageSettings::default().validate_for_scene(0).is_ok(),
+        "cs184 needs no camera"
+    );
 }

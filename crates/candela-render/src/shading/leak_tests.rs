@@ -41,8 +41,9 @@ fn no_sampled_direction_leaks_through_the_geometric_surface() {
         sampler.start_pixel_sample(0, 0, i);
         // A strongly tilted map texel (up to ~80° off the normal) on an
         // interpolated normal tilted up to 30° from the geometric one.
-        let ns = (ng + 0.5 * square_to_uniform_sphere(sampler.next_2d()) * Vec3::new(1.0, 1.0, 0.0))
-            .normalize();
+        let ns = (ng
+            + 0.5 * square_to_uniform_sphere(sampler.next_2d()) * Vec3::new(1.0, 1.0, 0.0))
+        .normalize();
         let texel_dir = square_to_uniform_hemisphere(sampler.next_2d());
         let texel = (texel_dir.max(Vec3::new(-1.0, -1.0, 0.15)).normalize() + Vec3::ONE) * 0.5;
         let wo = square_to_uniform_hemisphere(sampler.next_2d());
@@ -61,13 +62,18 @@ fn no_sampled_direction_leaks_through_the_geometric_surface() {
             };
             kept += 1;
             if s.flags.is_transmission() {
-                assert!(wi.dot(ng) < 0.0, "{bsdf:?}: transmission stayed above: {wi}");
+                assert!(
+                    wi.dot(ng) < 0.0,
+                    "{bsdf:?}: transmission stayed above: {wi}"
+                );
             } else {
                 assert!(wi.dot(ng) > 0.0, "{bsdf:?}: reflection went below: {wi}");
             }
         }
     }
     let lost = f64::from(rejected) / f64::from(kept + rejected);
-    eprintln!("strong random normal maps: {lost:.3} of the samples rejected (lost energy, no leaks)");
+    eprintln!(
+        "strong random normal maps: {lost:.3} of the samples rejected (lost energy, no leaks)"
+    );
     assert!(kept > 30_000, "{kept}");
 }

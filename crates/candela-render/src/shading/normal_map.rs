@@ -112,7 +112,10 @@ mod tests {
     fn a_flat_texel_changes_nothing_and_a_tilted_one_follows_the_uvs() {
         let ns = Vec3::new(0.1, 0.2, 0.97).normalize();
         let (dpdu, dpdv) = (Vec3::X * 2.0, Vec3::Y * 0.5);
-        assert_eq!(mapped_normal(ns, dpdu, dpdv, Vec3::new(0.5, 0.5, 1.0), 0.7), ns);
+        assert_eq!(
+            mapped_normal(ns, dpdu, dpdv, Vec3::new(0.5, 0.5, 1.0), 0.7),
+            ns
+        );
         // +X in the map tilts toward dp/du, +Y toward dp/dv, mirrored UVs too.
         let flat = Vec3::Z;
         let right = mapped_normal(flat, dpdu, dpdv, Vec3::new(1.0, 0.5, 0.5), 1.0);
@@ -130,14 +133,20 @@ mod tests {
         // normal is (−a, 0, 1)/√(1 + a²).
         let a = 0.6;
         let n = bumped_normal(Vec3::Z, Vec3::X, Vec3::Y, a, 0.0);
-        assert!((n - Vec3::new(-a, 0.0, 1.0).normalize()).length() < 1e-6, "{n}");
+        assert!(
+            (n - Vec3::new(-a, 0.0, 1.0).normalize()).length() < 1e-6,
+            "{n}"
+        );
         // With UVs stretched (dp/du = 2x), the same height slope per unit u
         // is half as steep in space.
         let n = bumped_normal(Vec3::Z, 2.0 * Vec3::X, Vec3::Y, a, 0.0);
         assert!((n - Vec3::new(-a / 2.0, 0.0, 1.0).normalize()).length() < 1e-6);
         // Mirrored UVs (dp/dv = −y) keep the normal on the side of ns.
         let n = bumped_normal(Vec3::Z, Vec3::X, -Vec3::Y, 0.0, a);
-        assert!((n - Vec3::new(0.0, a, 1.0).normalize()).length() < 1e-6, "{n}");
+        assert!(
+            (n - Vec3::new(0.0, a, 1.0).normalize()).length() < 1e-6,
+            "{n}"
+        );
         assert_eq!(bumped_normal(Vec3::Z, Vec3::X, Vec3::Y, 0.0, 0.0), Vec3::Z);
     }
 

@@ -179,9 +179,7 @@ impl MaterialTextures {
 
     /// The textured emission at `uv`, if the emission slot is filled.
     pub fn emission(&self, uv: Vec2) -> Option<Vec3> {
-        self.emission
-            .as_ref()
-            .map(|t| t.color(uv).max(Vec3::ZERO))
+        self.emission.as_ref().map(|t| t.color(uv).max(Vec3::ZERO))
     }
 
     /// The opacity at `uv` in [0, 1]: 1 without an opacity texture; with a

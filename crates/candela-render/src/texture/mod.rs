@@ -180,9 +180,13 @@ impl ImageTexture {
     /// image has no alpha) at `uv`, wrapping around.
     pub fn lookup_channel(&self, uv: Vec2, c: u8) -> f32 {
         match (c, &self.alpha) {
-            (0..=2, _) => self.bilinear(uv, |i, j| Vec3::splat(self.texel(i, j)[c as usize])).x,
+            (0..=2, _) => {
+                self.bilinear(uv, |i, j| Vec3::splat(self.texel(i, j)[c as usize]))
+                    .x
+            }
             (_, Some(alpha)) => {
-                self.bilinear(uv, |i, j| Vec3::splat(alpha[self.texel_index(i, j)])).x
+                self.bilinear(uv, |i, j| Vec3::splat(alpha[self.texel_index(i, j)]))
+                    .x
             }
             (_, None) => 1.0,
         }

@@ -140,12 +140,23 @@ fn a_2x2_png_decodes_to_its_known_values_in_either_colour_space() {
         let uv = Vec2::new((i as f32 + 0.5) / 2.0, (j as f32 + 0.5) / 2.0);
         let stored = texel.map(|b| f32::from(b) / 255.0);
         // Data: exactly the stored value, no transfer curve and back.
-        assert_eq!(linear.texel(i, j), Vec3::new(stored[0], stored[1], stored[2]));
+        assert_eq!(
+            linear.texel(i, j),
+            Vec3::new(stored[0], stored[1], stored[2])
+        );
         for c in 0..4u8 {
-            assert_eq!(linear.lookup_channel(uv, c), stored[c as usize], "texel {k} channel {c}");
+            assert_eq!(
+                linear.lookup_channel(uv, c),
+                stored[c as usize],
+                "texel {k} channel {c}"
+            );
         }
         // Colour: decoded from sRGB; alpha is coverage and stays linear.
-        let decoded = Vec3::new(srgb_decode(stored[0]), srgb_decode(stored[1]), srgb_decode(stored[2]));
+        let decoded = Vec3::new(
+            srgb_decode(stored[0]),
+            srgb_decode(stored[1]),
+            srgb_decode(stored[2]),
+        );
         assert_eq!(srgb.texel(i, j), decoded);
         assert_eq!(srgb.lookup_channel(uv, 3), stored[3]);
     }
