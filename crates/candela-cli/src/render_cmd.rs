@@ -142,6 +142,10 @@ fn load(args: &RenderArgs) -> Result<Loaded> {
 /// Builds the render-ready scene on the render's threads.
 fn build(loaded: &Loaded, settings: &Settings, quiet: bool) -> Result<Scene> {
     let desc = &loaded.scene;
+    settings
+        .image
+        .validate_for_scene(desc.cameras.len())
+        .map_err(UsageError::from)?;
     let opts = settings.scene_options().map_err(UsageError::from)?;
     let scene = settings
         .with_threads(|| Scene::build(desc, &opts))

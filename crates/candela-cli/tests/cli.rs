@@ -278,3 +278,47 @@ fn the_bounce_view_is_a_documented_flag_and_renders() {
     );
     assert!(read_png(&out).is_ok());
 }
+
+#[test]
+fn camera_n_picks_the_files_nth_camera_and_refuses_one_it_lacks() {
+    let dir = scratch("camera-n");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/gltf/textured.gltf");
+    let render = |camera: &str, out: &Path| {
+        candela(&[
+            "-s",
+            "1",
+            "-q",
+            "--camera",
+            camera,
+            "-f",
+            path(out),
+            path(&scene),
+        ])
+    };
+    let images: Vec<_> = ["file", "0", "1"]
+        .iter()
+        .map(|camera| {
+            let out = dir.join(format!("camera-{camera}.png"));
+            let run = render(camera, &out);
+            assert_eq!(
+                run.status.code(),
+                Some(0),
+                "{}",
+                String::from_utf8_lossy(&run.stderr)
+            );
+            read_png(&out).expect("image")
+        })
+        .collect();
+    assert_eq!(images[0], images[1], "`file` is the first camera");
+    assert_ne!(images[1], images[2], "camera 1 is another view");
+    let out = dir.join("camera-2.png");
+    let run = render("2", &out);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--camera") && stderr.contains("2 camera(s)"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+}

@@ -23,5 +23,5 @@ pub use colormap::{rate_colormap, rate_image};
 pub use error::{BoxError, ImageError};
 pub use exr_io::{read_exr, read_exr_layers, write_exr, ExrLayers, LayerData};
 pub use heat::{finite_percentile, heat_colormap, heat_image};
-pub use png_io::{read_png, write_png, write_png_display};
+pub use png_io::{read_png, read_png_stored, write_png, write_png_display, StoredPng};
 pub use tonemap::{quantize_u8, srgb_decode, srgb_encode, ToneCurve, ToneMap};

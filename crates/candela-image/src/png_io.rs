@@ -75,6 +75,36 @@ fn write_rgb8(
 /// [`ImageError::Io`] if the file cannot be opened, [`ImageError::Read`] if
 /// it is not a valid PNG; both name the file.
 pub fn read_png(path: impl AsRef<Path>) -> Result<RgbImage, ImageError> {
+    let stored = read_png_stored(path)?;
+    let pixels = stored
+        .pixels
+        .iter()
+        .map(|p| [srgb_decode(p[0]), srgb_decode(p[1]), srgb_decode(p[2])])
+        .collect();
+    RgbImage::from_pixels(stored.width, stored.height, pixels)
+}
+
+/// A PNG's stored values, each scaled to [0, 1] (`v / 255` or `v / 65535`)
+/// with no transfer curve applied, as RGBA: grey is replicated to RGB and
+/// a missing alpha is 1. Data maps (roughness, normals, alpha) are read
+/// from these exactly; colour is decoded by the caller.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StoredPng {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Row-major from the top row, RGBA.
+    pub pixels: Vec<[f32; 4]>,
+    /// Whether the file has an alpha channel.
+    pub has_alpha: bool,
+}
+
+/// Reads a PNG's stored values (see [`StoredPng`]).
+///
+/// # Errors
+/// As [`read_png`].
+pub fn read_png_stored(path: impl AsRef<Path>) -> Result<StoredPng, ImageError> {
     let path = path.as_ref();
     let read_err = |e: png::DecodingError| ImageError::Read {
         path: path.into(),
@@ -100,7 +130,7 @@ pub fn read_png(path: impl AsRef<Path>) -> Result<RgbImage, ImageError> {
     let mut buffer = vec![0u8; size];
     let info = reader.next_frame(&mut buffer).map_err(read_err)?;
     let (width, height) = (info.width as usize, info.height as usize);
-    let samples = decode_samples(&buffer[..info.line_size * height], info.line_size, &info);
+    let samples = stored_samples(&buffer[..info.line_size * height], info.line_size, &info);
     let channels = match info.color_type {
         png::ColorType::Grayscale => 1,
         png::ColorType::GrayscaleAlpha => 2,
@@ -115,34 +145,36 @@ pub fn read_png(path: impl AsRef<Path>) -> Result<RgbImage, ImageError> {
     };
     let pixels = samples
         .chunks_exact(channels)
-        .map(|s| {
-            if channels < 3 {
-                [s[0]; 3]
-            } else {
-                [s[0], s[1], s[2]]
-            }
+        .map(|s| match channels {
+            1 => [s[0], s[0], s[0], 1.0],
+            2 => [s[0], s[0], s[0], s[1]],
+            3 => [s[0], s[1], s[2], 1.0],
+            _ => [s[0], s[1], s[2], s[3]],
         })
         .collect();
-    RgbImage::from_pixels(width, height, pixels)
+    Ok(StoredPng {
+        width,
+        height,
+        pixels,
+        has_alpha: channels % 2 == 0,
+    })
 }
 
 /// Converts the decoder's rows (8 or 16 bits per sample, big-endian) to
-/// linear floats, dropping any row padding.
-fn decode_samples(rows: &[u8], line_size: usize, info: &png::OutputInfo) -> Vec<f32> {
+/// floats in [0, 1], dropping any row padding.
+fn stored_samples(rows: &[u8], line_size: usize, info: &png::OutputInfo) -> Vec<f32> {
     let samples_per_row = info.width as usize * info.color_type.samples();
     match info.bit_depth {
         png::BitDepth::Sixteen => rows
             .chunks_exact(line_size)
             .flat_map(|row| row[..samples_per_row * 2].chunks_exact(2))
-            .map(|b| srgb_decode(u16::from_be_bytes([b[0], b[1]]) as f32 / 65535.0))
+            .map(|b| u16::from_be_bytes([b[0], b[1]]) as f32 / 65535.0)
             .collect(),
-        _ => {
-            let table: Vec<f32> = (0..=255u8).map(|v| srgb_decode(v as f32 / 255.0)).collect();
-            rows.chunks_exact(line_size)
-                .flat_map(|row| &row[..samples_per_row])
-                .map(|&v| table[v as usize])
-                .collect()
-        }
+        _ => rows
+            .chunks_exact(line_size)
+            .flat_map(|row| &row[..samples_per_row])
+            .map(|&v| v as f32 / 255.0)
+            .collect(),
     }
 }
 

@@ -17,6 +17,7 @@ pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod settings;
+pub mod shading;
 pub mod shape;
 pub mod stats;
 pub mod texture;

@@ -1,32 +1,32 @@
 //! Materials as the renderer uses them: a BSDF (or none, for pure
-//! emitters), an optional emitted radiance, and an optional image texture
-//! for the diffuse colour, looked up at each hit's `uv`.
+//! emitters), an optional emitted radiance, and the textures of the
+//! description's slots, looked up at each hit's `uv`.
 //!
 //! The description has a texture slot per parameter
-//! ([`candela_scene::TextureSlot`]); each slot is read here. Only the colour
-//! of a diffuse BSDF is textured so far: every other filled slot is
-//! returned by name as [`Unsupported`] (the scene reports it once), never
-//! dropped silently.
+//! ([`candela_scene::TextureSlot`]); every slot is read
+//! ([`crate::shading::MaterialTextures`], whose docs say what each slot
+//! drives on each BSDF). A slot the material's BSDF has no parameter for
+//! is returned by name as [`Unsupported`] (the scene reports it once),
+//! never dropped silently.
 
-use crate::bsdf::{Bsdf, MicrofacetDistribution, Plastic, RoughPlastic};
+use crate::bsdf::{Bsdf, MetallicRoughness, MicrofacetDistribution, Plastic, RoughPlastic};
+use crate::shading::MaterialTextures;
 use crate::shape::SurfaceHit;
-use crate::texture::{ImageTexture, TextureCache};
-use candela_scene::{BsdfDesc, MaterialDesc, MicrofacetModel, TextureSlot};
-use glam::Vec3;
-use std::sync::Arc;
+use crate::texture::TextureCache;
+use candela_scene::{BsdfDesc, MaterialDesc, MicrofacetModel};
+use glam::{Vec2, Vec3};
 
 /// A material ready for shading.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// The scattering model; `None` absorbs everything.
     pub bsdf: Option<Bsdf>,
-    /// Radiance emitted on the side of the surface normal.
+    /// Radiance emitted on the side of the surface normal; with an
+    /// emission texture, its mean (the light's power for light selection;
+    /// [`Material::emission_at`] gives the value at a point).
     pub emission: Option<Vec3>,
-    /// Diffuse colour by texture (replacing a diffuse BSDF's flat albedo),
-    /// shared by every material that names the same file.
-    pub diffuse_texture: Option<Arc<ImageTexture>>,
-    /// Factor on the diffuse texture's (linear) values: the slot's scale.
-    pub diffuse_scale: f32,
+    /// The textures of the description's slots.
+    pub textures: MaterialTextures,
 }
 
 /// The subset of a description this renderer cannot honour yet, by name.
@@ -120,47 +120,55 @@ impl Material {
             }),
             BsdfDesc::Conductor { eta, k, .. } => Some(Bsdf::Conductor { eta, k }),
             BsdfDesc::Black => None,
+            BsdfDesc::MetallicRoughness {
+                base_color,
+                metallic,
+                roughness,
+                transmission,
+                ior,
+            } => Some(Bsdf::MetallicRoughness(MetallicRoughness::new(
+                base_color,
+                metallic,
+                roughness,
+                transmission,
+                ior,
+            ))),
         };
-        let (mut diffuse_texture, mut diffuse_scale) = (None, 1.0);
-        for (slot, t) in desc.textures.iter() {
-            match (slot, &bsdf) {
-                (TextureSlot::Color, Some(Bsdf::Diffuse { .. })) => {
-                    diffuse_texture = textures.get_in(&t.path, t.color_space);
-                    diffuse_scale = t.scale;
-                }
-                (TextureSlot::Color, _) => unsupported.push(Unsupported(format!(
-                    "material '{}': colour texture on a non-diffuse BSDF (ignored)",
-                    desc.name
-                ))),
-                (other, _) => unsupported.push(Unsupported(format!(
-                    "material '{}': {} texture not supported yet (ignored)",
-                    desc.name,
-                    other.name()
-                ))),
-            }
+        let (textures, unusable) =
+            MaterialTextures::from_slots(&desc.textures, bsdf.as_ref(), textures);
+        for slot in unusable {
+            unsupported.push(Unsupported(format!(
+                "material '{}': {} texture has no parameter to drive on this BSDF (ignored)",
+                desc.name,
+                slot.name()
+            )));
         }
-        let emission = desc.emission.filter(|e| e.max_element() > 0.0);
+        let emission = match &textures.emission {
+            Some(t) => Some(t.image.mean() * t.scale.max(0.0)),
+            None => desc.emission,
+        }
+        .filter(|e| e.max_element() > 0.0);
         (
             Material {
                 bsdf,
                 emission,
-                diffuse_texture,
-                diffuse_scale,
+                textures,
             },
             unsupported,
         )
     }
 
-    /// The BSDF at a hit point: a textured diffuse material takes its
-    /// albedo from the texture at the hit's `uv`, times the slot's scale
-    /// (clamped to [0, 1] so it never creates energy).
+    /// The BSDF at a hit point, with every textured parameter read at the
+    /// hit's `uv`.
     pub fn bsdf_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
-        match (&self.bsdf, &self.diffuse_texture) {
-            (Some(Bsdf::Diffuse { .. }), Some(texture)) => Some(Bsdf::Diffuse {
-                albedo: (texture.lookup(hit.uv) * self.diffuse_scale).clamp(Vec3::ZERO, Vec3::ONE),
-            }),
-            _ => self.bsdf,
-        }
+        self.bsdf.map(|b| self.textures.apply(b, hit.uv))
+    }
+
+    /// The radiance emitted at texture coordinate `uv` (on the emitting
+    /// side): the emission texture's value there, else the constant.
+    pub fn emission_at(&self, uv: Vec2) -> Option<Vec3> {
+        self.emission?;
+        self.textures.emission(uv).or(self.emission)
     }
 }
 

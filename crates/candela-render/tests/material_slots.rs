@@ -1,8 +1,9 @@
-//! The description's texture slots through the material build: the colour
-//! slot's texture is read in its declared colour space and scaled, and
-//! every slot no BSDF uses yet is reported by name, not dropped.
+//! The description's texture slots through the material build: every slot
+//! is read in its declared colour space, channel and scale, and a slot the
+//! material's BSDF has no parameter for is reported by name, not dropped.
 
 use candela_image::{write_png, RgbImage, ToneMap};
+use candela_render::bsdf::Bsdf;
 use candela_render::material::Material;
 use candela_render::shape::{PrimRef, SurfaceHit};
 use candela_render::texture::TextureCache;
@@ -58,9 +59,11 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         "{}",
         albedo(&m)
     );
+    // A Lambertian surface has no roughness or metalness; every other slot
+    // drives something.
     let names: Vec<&str> = unsupported.iter().map(|u| u.0.as_str()).collect();
-    assert_eq!(names.len(), 5, "{names:?}");
-    for slot in TextureSlot::ALL.into_iter().skip(1) {
+    assert_eq!(names.len(), 2, "{names:?}");
+    for slot in [TextureSlot::Roughness, TextureSlot::Metalness] {
         assert!(
             names
                 .iter()
@@ -81,17 +84,40 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         albedo(&m)
     );
 
-    // A colour texture on a mirror is reported, not used.
+    // A colour texture on a mirror is its reflectance.
     let mut mirror = linear.clone();
     mirror.bsdf = BsdfDesc::Mirror {
         reflectance: Vec3::ONE,
     };
     let (m, unsupported) = Material::from_desc(&mirror, &mut cache);
-    assert!(m.diffuse_texture.is_none());
-    assert_eq!(unsupported.len(), 1);
-    assert!(
-        unsupported[0].0.contains("colour texture"),
-        "{unsupported:?}"
+    assert!(unsupported.is_empty(), "{unsupported:?}");
+    match m.bsdf_at(&hit_at(Vec2::new(0.5, 0.5))) {
+        Some(Bsdf::Mirror { reflectance }) => {
+            assert!((reflectance - Vec3::splat(stored)).abs().max_element() < 1e-6)
+        }
+        other => panic!("{other:?}"),
+    }
+
+    // The glTF model takes every slot; a pure emitter only emission and
+    // opacity.
+    let mut gltf = desc.clone();
+    gltf.bsdf = BsdfDesc::MetallicRoughness {
+        base_color: Vec3::ONE,
+        metallic: 0.0,
+        roughness: 0.5,
+        transmission: 0.0,
+        ior: 1.5,
+    };
+    let (_, unsupported) = Material::from_desc(&gltf, &mut cache);
+    assert!(unsupported.is_empty(), "{unsupported:?}");
+    let mut lamp = desc.clone();
+    lamp.bsdf = BsdfDesc::Black;
+    let (m, unsupported) = Material::from_desc(&lamp, &mut cache);
+    assert_eq!(
+        unsupported.len(),
+        5,
+        "colour, roughness, metalness, normal, bump: {unsupported:?}"
     );
+    assert!(m.emission.is_some(), "the emission texture makes it a lamp");
     std::fs::remove_dir_all(&dir).ok();
 }

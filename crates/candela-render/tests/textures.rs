@@ -229,7 +229,7 @@ fn a_missing_texture_is_reported_once_and_the_flat_colour_used() {
     let scene = build(&desc);
     assert_eq!(scene.warnings.len(), 1, "{:?}", scene.warnings);
     assert!(scene.warnings[0].contains("nowhere.png"));
-    assert!(scene.materials.iter().all(|m| m.diffuse_texture.is_none()));
+    assert!(scene.materials.iter().all(|m| m.textures.color.is_none()));
     // Flat grey 0.5 under a white sky: every pixel converges to 0.5.
     let images = batches(&scene);
     let means: Vec<f64> = images.iter().map(|i| image_mean(i)[1]).collect();

@@ -41,7 +41,7 @@ fn khronos_box_loads_with_its_counts_and_bounds() {
         "{lo} {hi}"
     );
     assert!(
-        matches!(s.materials[0].bsdf, BsdfDesc::Diffuse { albedo } if close(albedo, Vec3::new(0.8, 0.0, 0.0)))
+        matches!(s.materials[0].bsdf, BsdfDesc::MetallicRoughness { base_color, .. } if close(base_color, Vec3::new(0.8, 0.0, 0.0)))
     );
     assert!(s.cameras.is_empty() && !l.hints.file_camera);
 }
@@ -186,14 +186,16 @@ fn metallic_roughness_materials_map_onto_the_bsdfs() {
         ]);
     });
     let s = load_ok(&write("metal.gltf", &text)).scene;
-    let BsdfDesc::Microfacet { alpha, eta, k } = s.materials[0].bsdf else {
-        panic!("{:?}", s.materials[0].bsdf)
-    };
-    assert!((alpha - 0.25).abs() < 1e-6);
-    // Normal-incidence Fresnel of a conductor: ((η-1)² + k²) / ((η+1)² + k²).
-    let f0 = ((eta - Vec3::ONE) * (eta - Vec3::ONE) + k * k)
-        / ((eta + Vec3::ONE) * (eta + Vec3::ONE) + k * k);
-    assert!(close(f0, Vec3::new(0.9, 0.6, 0.3)), "{f0}");
+    assert_eq!(
+        s.materials[0].bsdf,
+        BsdfDesc::MetallicRoughness {
+            base_color: Vec3::new(0.9, 0.6, 0.3),
+            metallic: 1.0,
+            roughness: 0.5,
+            transmission: 0.0,
+            ior: 1.5
+        }
+    );
 }
 
 #[test]
@@ -239,13 +241,14 @@ fn emission_transmission_and_texture_slots() {
     assert_eq!(t.get(TextureSlot::Normal).map(|n| n.scale), Some(0.5));
     assert_eq!(t.get(TextureSlot::Opacity).and_then(|o| o.channel), Some(3));
     assert!(t.get(TextureSlot::Color).is_some());
-    assert!(l.report.mentions("alphaCutoff"));
+    assert_eq!(t.opacity_cutoff, Some(0.5), "MASK with the default cutoff");
     assert_eq!(
         s.materials[1].bsdf,
-        BsdfDesc::Glass {
-            reflectance: Vec3::ONE,
-            transmittance: Vec3::ONE,
+        BsdfDesc::MetallicRoughness {
+            base_color: Vec3::ONE,
+            metallic: 0.0,
             roughness: 0.0,
+            transmission: 1.0,
             ior: 1.33
         }
     );
@@ -315,4 +318,24 @@ fn sparse_accessors_overwrite_their_base() {
     });
     let s = load_ok(&write("sparse.gltf", &text)).scene;
     assert_eq!(s.meshes[0].positions[2], Vec3::new(0.0, 2.0, 0.0));
+}
+
+#[test]
+fn the_projects_textured_scene_loads_with_flipped_uvs_and_every_slot() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/gltf/textured.gltf");
+    let l = load_ok(&path);
+    let s = &l.scene;
+    assert_eq!(s.cameras.len(), 2, "front and side");
+    // glTF's (u, v) = (0, 0) is the image's top-left: Candela's (0, 1).
+    let bricks = &s.meshes[0];
+    assert_eq!(bricks.uvs[0], glam::Vec2::new(0.0, 1.0));
+    let t = &s.materials[0].textures;
+    assert!(t.get(TextureSlot::Color).is_some() && t.get(TextureSlot::Normal).is_some());
+    assert_eq!(t.get(TextureSlot::Opacity).and_then(|o| o.channel), Some(3));
+    assert_eq!(t.opacity_cutoff, Some(0.5));
+    assert!(
+        matches!(s.materials[1].bsdf, BsdfDesc::MetallicRoughness { metallic, .. } if metallic == 1.0)
+    );
+    assert!(l.report.warnings.is_empty(), "{}", l.report);
 }

@@ -47,6 +47,9 @@ mod fresnel;
 #[cfg(test)]
 mod furnace_tests;
 mod ggx;
+mod metallic_roughness;
+#[cfg(test)]
+mod metallic_roughness_tests;
 mod microfacet;
 #[cfg(test)]
 mod microfacet_tests;
@@ -70,6 +73,7 @@ mod thin_dielectric_tests;
 
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
+pub use metallic_roughness::MetallicRoughness;
 pub use plastic::Plastic;
 pub use rough_plastic::RoughPlastic;
 
@@ -197,6 +201,10 @@ pub enum Bsdf {
         /// Imaginary part (extinction coefficient), per channel.
         k: Vec3,
     },
+    /// The glTF 2.0 metallic-roughness model: Lambert base and GGX
+    /// specular with Schlick Fresnel, mixed by metalness, with glass-like
+    /// transmission (see `metallic_roughness.rs`).
+    MetallicRoughness(MetallicRoughness),
 }
 
 impl Bsdf {
@@ -213,6 +221,7 @@ impl Bsdf {
             Bsdf::RoughPlastic(_) => "rough plastic",
             Bsdf::Conductor { .. } => "conductor",
             Bsdf::Microfacet { .. } => "rough conductor",
+            Bsdf::MetallicRoughness(_) => "glTF metallic-roughness",
         }
     }
 
@@ -229,6 +238,7 @@ impl Bsdf {
             Bsdf::RoughPlastic(_) => rough_plastic::FLAGS,
             Bsdf::Conductor { .. } => specular::MIRROR_FLAGS,
             Bsdf::Microfacet { .. } => microfacet::FLAGS,
+            Bsdf::MetallicRoughness(m) => m.flags(),
         }
     }
 
@@ -255,6 +265,7 @@ impl Bsdf {
                 eta,
                 k,
             } => microfacet::f(distribution, eta, k, wo, wi),
+            Bsdf::MetallicRoughness(m) => m.f(wo, wi),
         }
     }
 
@@ -287,6 +298,7 @@ impl Bsdf {
                 eta,
                 k,
             } => microfacet::sample(distribution, eta, k, wo, u2),
+            Bsdf::MetallicRoughness(m) => m.sample(wo, u1, u2),
         }
     }
 
@@ -304,6 +316,7 @@ impl Bsdf {
             Bsdf::Plastic(plastic) => plastic.pdf(wo, wi),
             Bsdf::RoughPlastic(plastic) => plastic.pdf(wo, wi),
             Bsdf::Microfacet { distribution, .. } => microfacet::pdf(distribution, wo, wi),
+            Bsdf::MetallicRoughness(m) => m.pdf(wo, wi),
         }
     }
 
@@ -323,6 +336,7 @@ impl Bsdf {
             Bsdf::Microfacet { eta, k, .. } | Bsdf::Conductor { eta, k } => {
                 fresnel::fresnel_conductor(1.0, eta, k)
             }
+            Bsdf::MetallicRoughness(m) => m.albedo(),
         }
     }
 }

@@ -77,6 +77,14 @@ impl Plastic {
         self.diffuse
     }
 
+    /// The same coating over another base (a colour texture).
+    pub fn with_diffuse(&self, diffuse: Vec3) -> Self {
+        Self {
+            linear: self.linear,
+            ..Self::new(diffuse, self.specular, self.ior)
+        }
+    }
+
     /// The probability of sampling the specular lobe from `wo`.
     fn specular_probability(&self, cos_o: f32) -> f32 {
         let fresnel = fresnel_dielectric(cos_o.abs(), self.ior);

@@ -68,6 +68,7 @@ pub struct RoughPlastic {
     /// ρ' / (π η²): the base lobe without its two transmittances.
     base_scale: Vec3,
     specular_weight: f32,
+    nonlinear: bool,
     coating: &'static CoatingTable,
 }
 
@@ -100,8 +101,14 @@ impl RoughPlastic {
             ior,
             base_scale,
             specular_weight: if d + s > 0.0 { s / (d + s) } else { 0.5 },
+            nonlinear,
             coating,
         }
+    }
+
+    /// The same coating over another base (a colour texture).
+    pub fn with_diffuse(&self, diffuse: Vec3) -> Self {
+        Self::new(self.dist, diffuse, self.specular, self.ior, self.nonlinear)
     }
 
     /// The base's albedo (what one mostly sees).

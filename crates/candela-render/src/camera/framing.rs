@@ -16,16 +16,83 @@ use super::Camera;
 use candela_scene::{CameraDesc, Projection, SceneDesc};
 use glam::{Vec2, Vec3, Vec4};
 
-/// How to place the camera.
+/// How to place the camera. Written `cs184`, `file` or a number `N` (on
+/// the command line, in JSON also as a number).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-#[serde(rename_all = "lowercase")]
+#[serde(try_from = "CameraModeValue", into = "CameraModeValue")]
 pub enum CameraMode {
     /// The CS184 orbit rule (default).
     #[default]
     Cs184,
-    /// The file's camera as written: node transform, local -Z, xfov/yfov.
+    /// The file's camera as written: node transform, local -Z, xfov/yfov;
+    /// the first when the file has several.
     File,
+    /// The file's camera number `N`, counting from 0 in file order (glTF:
+    /// camera nodes in node order; Mitsuba: sensors in document order).
+    Numbered(usize),
+}
+
+impl CameraMode {
+    /// The index of the file camera this mode renders from, if any.
+    pub fn file_camera_index(self) -> Option<usize> {
+        match self {
+            CameraMode::Cs184 => None,
+            CameraMode::File => Some(0),
+            CameraMode::Numbered(n) => Some(n),
+        }
+    }
+}
+
+impl std::fmt::Display for CameraMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CameraMode::Cs184 => f.write_str("cs184"),
+            CameraMode::File => f.write_str("file"),
+            CameraMode::Numbered(n) => write!(f, "{n}"),
+        }
+    }
+}
+
+impl std::str::FromStr for CameraMode {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "cs184" => Ok(CameraMode::Cs184),
+            "file" => Ok(CameraMode::File),
+            n => n.parse().map(CameraMode::Numbered).map_err(|_| {
+                format!("'{s}': expected cs184, file, or a camera number (0 is the file's first)")
+            }),
+        }
+    }
+}
+
+/// A camera mode on the wire: a name or a number.
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(untagged)]
+enum CameraModeValue {
+    Number(usize),
+    Name(String),
+}
+
+impl TryFrom<CameraModeValue> for CameraMode {
+    type Error = String;
+
+    fn try_from(v: CameraModeValue) -> Result<Self, Self::Error> {
+        match v {
+            CameraModeValue::Number(n) => Ok(CameraMode::Numbered(n)),
+            CameraModeValue::Name(s) => s.parse(),
+        }
+    }
+}
+
+impl From<CameraMode> for CameraModeValue {
+    fn from(m: CameraMode) -> Self {
+        match m {
+            CameraMode::Numbered(n) => CameraModeValue::Number(n),
+            named => CameraModeValue::Name(named.to_string()),
+        }
+    }
 }
 
 /// Field of view used when a file has no camera (the course program's
@@ -42,6 +109,14 @@ pub enum FramingError {
     /// `--camera file` was asked for but the scene has no camera.
     #[error("the scene has no camera (use the default framing instead of --camera file)")]
     NoFileCamera,
+    /// `--camera N` names a camera the file does not have.
+    #[error("--camera {index}: the file has {count} camera(s), numbered from 0")]
+    NoSuchCamera {
+        /// The number asked for.
+        index: usize,
+        /// How many cameras the file has.
+        count: usize,
+    },
     /// The resulting camera is degenerate.
     #[error("degenerate camera: {0}")]
     Degenerate(&'static str),
@@ -57,10 +132,20 @@ pub fn frame_scene(
     if width == 0 || height == 0 {
         return Err(FramingError::Degenerate("image has zero size"));
     }
-    let file = scene.cameras.first();
+    let file = match mode {
+        CameraMode::Numbered(index) => {
+            Some(scene.cameras.get(index).ok_or(FramingError::NoSuchCamera {
+                index,
+                count: scene.cameras.len(),
+            })?)
+        }
+        _ => scene.cameras.first(),
+    };
     let mut camera = match mode {
         CameraMode::Cs184 => cs184_orbit(scene, file, width, height)?,
-        CameraMode::File => file_camera(file.ok_or(FramingError::NoFileCamera)?, width, height)?,
+        CameraMode::File | CameraMode::Numbered(_) => {
+            file_camera(file.ok_or(FramingError::NoFileCamera)?, width, height)?
+        }
     };
     if let Some(desc) = file {
         apply_projection(&mut camera, desc.projection)?;

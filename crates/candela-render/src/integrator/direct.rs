@@ -15,6 +15,7 @@ use crate::light::LightSample;
 use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::shading::scatter_allowed;
 use crate::shape::SurfaceHit;
 use glam::{Vec2, Vec3};
 
@@ -71,7 +72,7 @@ pub fn unoccluded(
     let mut ray = Ray::new(origin, wi);
     ray.t_max = t_max;
     ctx.rays.shadow += 1;
-    !scene.occluded(&ray, &mut ctx.rays.traversal)
+    !scene.occluded_visible(&ray, &mut ctx.rays.traversal)
 }
 
 /// Sampler dimensions one [`estimate_direct`] call draws in `scene`: two per
@@ -193,9 +194,12 @@ fn estimate_hemisphere<R: PathRecorder>(
         }
         let ray = Ray::new(hit.spawn_origin(wi), wi);
         ctx.rays.shadow += 1;
-        let found = scene.intersect(&ray, &mut ctx.rays.traversal);
+        let found = scene.intersect_visible(&ray, &mut ctx.rays.traversal);
         let le = match &found {
-            Some(h) if h.front_face => scene.material(h.material).emission.unwrap_or(Vec3::ZERO),
+            Some(h) if h.front_face => scene
+                .material(h.material)
+                .emission_at(h.uv)
+                .unwrap_or(Vec3::ZERO),
             Some(_) => Vec3::ZERO,
             None => scene
                 .lights
@@ -271,13 +275,12 @@ impl Vertex<'_> {
         if s.pdf <= 0.0 || s.l == Vec3::ZERO {
             return Vec3::ZERO;
         }
-        // Light arriving from behind the geometric surface reaches this side
-        // only through a transmissive BSDF (no leaks through walls whose
-        // shading normals bend).
-        if s.wi.dot(hit.ng) <= 0.0 && !bsdf.flags().is_transmission() {
+        // The geometric surface decides reflection vs transmission (no leaks
+        // through walls whose shading normals bend: `shading/normal_map.rs`).
+        let wi = self.frame.to_local(s.wi);
+        if !scatter_allowed(hit.ng, s.wi, self.wo, wi) {
             return Vec3::ZERO;
         }
-        let wi = self.frame.to_local(s.wi);
         let f = bsdf.f(self.wo, wi);
         event.f = f;
         if f == Vec3::ZERO {

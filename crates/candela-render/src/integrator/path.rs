@@ -23,10 +23,11 @@
 use super::direct::{bsdf_hit_weight, direct_dimensions, estimate_direct, LightingMode};
 use super::record::{EmissionEvent, PathEnd, PathRecorder, ScatterEvent};
 use super::{FirstHitAov, ThreadContext};
-use crate::bsdf::{Bsdf, BsdfSample};
+use crate::bsdf::Bsdf;
 use crate::geometry::{Frame, Ray};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::shading::{sample_scatter, shading_frame, NoScatter};
 use crate::shape::SurfaceHit;
 use glam::Vec3;
 use std::ops::RangeInclusive;
@@ -85,7 +86,7 @@ pub fn path_radiance<R: PathRecorder>(
     let mut prev: Option<PrevVertex> = None;
     let mut depth = 0u32;
     let end = loop {
-        let Some(hit) = scene.intersect(&ray, &mut ctx.rays.traversal) else {
+        let Some(hit) = scene.intersect_visible(&ray, &mut ctx.rays.traversal) else {
             rec.escape(depth, &ray, beta);
             if settings.bounces.contains(&depth) {
                 l += beta * escaped_radiance(scene, &ray, prev, settings, rec);
@@ -98,7 +99,7 @@ pub fn path_radiance<R: PathRecorder>(
             aov.record(&hit, material);
         }
         if settings.bounces.contains(&depth) && hit.front_face {
-            if let Some(le) = material.emission {
+            if let Some(le) = material.emission_at(hit.uv) {
                 let mis_weight = emitter_weight(scene, &ray, &hit, prev, settings);
                 l += beta * le * mis_weight;
                 rec.emission(&EmissionEvent {
@@ -115,23 +116,23 @@ pub fn path_radiance<R: PathRecorder>(
         let Some(bsdf) = material.bsdf_at(&hit) else {
             break PathEnd::Absorbed; // a pure emitter absorbs
         };
-        let frame = Frame::from_normal(hit.ns);
+        let frame = shading_frame(scene, &hit, material);
         if !bsdf.flags().is_specular() {
             l += beta
                 * direct_at_vertex(
                     scene, &hit, &frame, &bsdf, depth, settings, sampler, ctx, rec,
                 );
         }
-        let Some(s) = sample_direction(&bsdf, &frame, &hit, sampler) else {
-            break PathEnd::NoScatter;
-        };
-        let wi = frame.to_world(s.wi);
         // A direction on the wrong side of the true surface would leak
-        // through it (shading normals bend, geometry does not).
+        // through it (shading normals bend, geometry does not): the
+        // sample is rejected (`shading::scatter_allowed`).
+        let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
+        let (wi, s) = match sample_scatter(&bsdf, &frame, hit.ng, hit.wo, u1, u2) {
+            Ok(scattered) => scattered,
+            Err(NoScatter::NoSample) => break PathEnd::NoScatter,
+            Err(NoScatter::WrongSide) => break PathEnd::WrongSide,
+        };
         let transmits = s.flags.is_transmission();
-        if (wi.dot(hit.ng) > 0.0) == transmits {
-            break PathEnd::WrongSide;
-        }
         beta *= s.f * s.wi.z.abs() / s.pdf;
         rec.scatter(&ScatterEvent {
             sample: &s,
@@ -209,20 +210,6 @@ fn direct_at_vertex<R: PathRecorder>(
     direct
 }
 
-/// The next direction, by the BSDF's own importance sampling (in every
-/// lighting mode, as CS184 continues its paths).
-fn sample_direction(
-    bsdf: &Bsdf,
-    frame: &Frame,
-    hit: &SurfaceHit,
-    sampler: &mut Sampler,
-) -> Option<BsdfSample> {
-    let wo = frame.to_local(hit.wo);
-    let u1 = sampler.next_1d();
-    let u2 = sampler.next_2d();
-    bsdf.sample(wo, u1, u2).filter(|s| s.pdf > 0.0)
-}
-
 /// The squared relative index of refraction (far side over near side) of a
 /// refraction leaving direction `wo` (local frame): the factor `1/η²` that
 /// the dielectric put into the sample's weight. 1 for every other BSDF.
@@ -230,6 +217,10 @@ fn refraction_eta2(bsdf: &Bsdf, wo: Vec3) -> f32 {
     match *bsdf {
         Bsdf::Glass { ior, .. } | Bsdf::Refraction { ior, .. } | Bsdf::RoughGlass { ior, .. } => {
             let eta = if wo.z > 0.0 { ior } else { 1.0 / ior };
+            eta * eta
+        }
+        Bsdf::MetallicRoughness(m) => {
+            let eta = if wo.z > 0.0 { m.ior() } else { 1.0 / m.ior() };
             eta * eta
         }
         // A thin pane passes light straight through: no change of medium.

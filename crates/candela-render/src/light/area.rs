@@ -1,13 +1,25 @@
 //! Emitting surfaces: mesh triangles, spheres and CGL rectangles, each
-//! one-sided with constant radiance.
+//! one-sided, with constant radiance or an emission texture.
+//!
+//! A textured emitter is still sampled as before (uniformly by area, or
+//! by solid angle for spheres): the density of a sampled point does not
+//! depend on the radiance there, so evaluating the texture at the sampled
+//! point (times the surface's opacity there, see `shading/opacity.rs`)
+//! keeps the estimate unbiased; only its variance depends on how uneven the
+//! texture is. The power used to choose among lights is the texture's mean
+//! (an approximation is enough: any positive selection probability is
+//! unbiased).
 
 use super::{luminance, LightSample};
 use crate::geometry::Frame;
 use crate::sampling::warp::{
     square_to_uniform_cone, square_to_uniform_triangle, uniform_cone_pdf, Parallelogram,
 };
+use crate::shading::MaterialTextures;
+use crate::shape::sphere_uv;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 /// The geometry of an area light.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,13 +47,36 @@ pub enum AreaShape {
     },
 }
 
-/// A one-sided emitter of constant radiance.
+/// A one-sided emitter of constant or textured radiance.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AreaLight {
     /// Where it emits from.
     pub shape: AreaShape,
-    /// Emitted radiance.
+    /// Emitted radiance (with a texture: its mean, for the light's power).
     pub radiance: Vec3,
+    /// The emission and opacity textures of the emitting material, with
+    /// the emitter's texture coordinates.
+    pub textured: Option<TexturedEmission>,
+}
+
+/// Where a textured emitter reads its radiance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TexturedEmission {
+    /// The material's textures (emission, opacity).
+    pub textures: Arc<MaterialTextures>,
+    /// A triangle's UVs at its three corners (the sphere's mapping is its
+    /// own).
+    pub uvs: [Vec2; 3],
+    /// The constant radiance when there is no emission texture (an
+    /// emitter with only a cut-out).
+    pub radiance: Vec3,
+}
+
+impl TexturedEmission {
+    /// Emitted radiance times opacity at `uv`.
+    pub fn at(&self, uv: Vec2) -> Vec3 {
+        self.textures.emission(uv).unwrap_or(self.radiance) * self.textures.opacity(uv)
+    }
 }
 
 impl AreaShape {
@@ -73,12 +108,21 @@ impl AreaLight {
     /// [`AreaLight::sample_li`] given `area = self.shape.area()`, which a
     /// caller sampling the light many times computes once.
     pub(super) fn sample_li_with_area(&self, p: Vec3, u: Vec2, area: f32) -> Option<LightSample> {
-        let (q, normal) = match &self.shape {
+        let (q, normal, l) = match &self.shape {
             AreaShape::Triangle { v, normal } => {
                 let b = square_to_uniform_triangle(u);
-                (b.x * v[0] + b.y * v[1] + (1.0 - b.x - b.y) * v[2], *normal)
+                let l = match &self.textured {
+                    // The corner weights of q, as `surface_hit` interpolates UVs.
+                    Some(t) => t.at(b.x * t.uvs[0] + b.y * t.uvs[1] + (1.0 - b.x - b.y) * t.uvs[2]),
+                    None => self.radiance,
+                };
+                (
+                    b.x * v[0] + b.y * v[1] + (1.0 - b.x - b.y) * v[2],
+                    *normal,
+                    l,
+                )
             }
-            AreaShape::Rect { shape, normal } => (shape.sample(u), *normal),
+            AreaShape::Rect { shape, normal } => (shape.sample(u), *normal, self.radiance),
             AreaShape::Sphere { center, radius } => {
                 return self.sample_sphere(p, *center, *radius, u)
             }
@@ -96,7 +140,7 @@ impl AreaLight {
         }
         Some(LightSample {
             wi,
-            l: self.radiance,
+            l,
             distance,
             pdf: dist2 / (cos_light * area),
         })
@@ -122,9 +166,16 @@ impl AreaLight {
         let b = wi.dot(to_center);
         let disc = (radius * radius - (dc2 - b * b)).max(0.0);
         let distance = b - disc.sqrt();
+        let l = match &self.textured {
+            Some(t) => {
+                let (su, sv) = sphere_uv(center, p + wi * distance);
+                t.at(Vec2::new(su, sv))
+            }
+            None => self.radiance,
+        };
         Some(LightSample {
             wi,
-            l: self.radiance,
+            l,
             distance,
             pdf: uniform_cone_pdf(local, cos_max),
         })

@@ -29,7 +29,7 @@ mod sky;
 #[cfg(test)]
 mod tests;
 
-pub use area::{AreaLight, AreaShape};
+pub use area::{AreaLight, AreaShape, TexturedEmission};
 pub use delta::{DirectionalLight, PointLight, SpotLight};
 pub use envmap::{EnvironmentLight, EnvironmentMap, EnvironmentOptions};
 pub use infinite::AmbientLight;

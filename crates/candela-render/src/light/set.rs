@@ -202,6 +202,7 @@ mod tests {
         let tri = Light::Area(AreaLight {
             shape: AreaShape::Triangle { v, normal },
             radiance: Vec3::ONE,
+            textured: None,
         });
         let set = LightSet::new(vec![tri.clone()], &[], 1.0);
         let mut hits = 0;

@@ -85,6 +85,7 @@ fn triangle_light_sampling_matches_its_pdf() {
             normal: Vec3::ZERO,
         },
         radiance: Vec3::ONE,
+        textured: None,
     };
     // Emitting downward, toward the points below.
     let AreaShape::Triangle { v, .. } = light.shape else {
@@ -118,6 +119,7 @@ fn rectangle_light_sampling_matches_its_pdf() {
             normal: -Vec3::Y,
         },
         radiance: Vec3::ONE,
+        textured: None,
     };
     check_area_light("rectangle", light, &[Vec3::ZERO, Vec3::new(-1.0, 0.5, 0.3)]);
 }
@@ -130,6 +132,7 @@ fn sphere_light_sampling_matches_its_pdf() {
             radius: 0.4,
         },
         radiance: Vec3::ONE,
+        textured: None,
     };
     // Far away (a narrow cone) and close (a wide one).
     check_area_light(
@@ -172,6 +175,7 @@ fn one_sided_lights_are_dark_from_behind() {
             normal: -Vec3::Y,
         },
         radiance: Vec3::ONE,
+        textured: None,
     });
     let above = Vec3::new(0.0, 2.0, 0.0);
     for i in 0..16 {
@@ -186,6 +190,7 @@ fn one_sided_lights_are_dark_from_behind() {
             radius: 1.0,
         },
         radiance: Vec3::ONE,
+        textured: None,
     });
     assert!(sphere
         .sample_li(Vec3::new(0.1, 0.0, 0.0), Vec2::splat(0.5))

@@ -7,7 +7,7 @@
 //! Warps ([`warp`]) turn those numbers into directions and points, each with
 //! the density it produces and, where one exists, its inverse.
 
-mod hash;
+pub(crate) mod hash;
 pub mod piecewise;
 mod sampler;
 mod sobol;

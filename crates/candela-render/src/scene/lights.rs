@@ -2,14 +2,17 @@
 //! emissive triangle and sphere.
 
 use super::{Geometry, SceneNames};
+use crate::light::TexturedEmission;
 use crate::light::{
     AmbientLight, AreaLight, AreaShape, DirectionalLight, EnvironmentLight, EnvironmentMap, Light,
     LightSet, PointLight, SpotLight,
 };
 use crate::material::Material;
 use crate::sampling::warp::Parallelogram;
+use crate::shading::MaterialTextures;
+use crate::shape::{PrimKind, PrimRef};
 use candela_scene::{LightKind, SceneDesc};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
 /// Builds the light set, with `environment` (if any) as one more light at
@@ -25,15 +28,34 @@ pub fn build_lights(
 ) -> LightSet {
     let mut lights = Vec::new();
     let mut prim_light = Vec::new();
+    // Each textured material's textures, shared by all its emitters.
+    let shared: Vec<Option<Arc<MaterialTextures>>> = materials
+        .iter()
+        .map(|m| {
+            let t = &m.textures;
+            (m.emission.is_some() && (t.emission.is_some() || t.has_opacity()))
+                .then(|| Arc::new(t.clone()))
+        })
+        .collect();
     for prim in geometry.prims() {
-        let Some(radiance) = materials[geometry.material(prim) as usize].emission else {
+        let material = geometry.material(prim) as usize;
+        let Some(radiance) = materials[material].emission else {
             continue;
         };
         let Some(shape) = geometry.emitter_shape(prim) else {
             continue; // zero area: it can neither be hit nor sampled
         };
+        let textured = shared[material].as_ref().map(|textures| TexturedEmission {
+            textures: textures.clone(),
+            uvs: corner_uvs(geometry, prim),
+            radiance,
+        });
         prim_light.push((prim, lights.len() as u32));
-        lights.push(Light::Area(AreaLight { shape, radiance }));
+        lights.push(Light::Area(AreaLight {
+            shape,
+            radiance,
+            textured,
+        }));
         names.lights.push(format!("emitting {}", names.shape(prim)));
     }
     for light in &desc.lights {
@@ -83,6 +105,7 @@ pub fn build_lights(
                     normal: normal.normalize_or(-Vec3::Y),
                 },
                 radiance,
+                textured: None,
             }),
         });
     }
@@ -91,4 +114,19 @@ pub fn build_lights(
         names.lights.push("environment map".into());
     }
     LightSet::new(lights, &prim_light, scene_radius)
+}
+
+/// A triangle's UVs at its corners, as `surface_hit` interpolates them (the
+/// barycentric parametrisation when it has none); unused for spheres.
+fn corner_uvs(geometry: &Geometry, prim: PrimRef) -> [Vec2; 3] {
+    let barycentric = [Vec2::ZERO, Vec2::X, Vec2::Y];
+    if prim.kind() != PrimKind::Triangle {
+        return barycentric;
+    }
+    let tris = &geometry.triangles;
+    let ti = tris.uv_indices[prim.index() as usize];
+    if ti[0] == u32::MAX {
+        return barycentric;
+    }
+    ti.map(|k| tris.uvs[k as usize])
 }

@@ -8,6 +8,7 @@
 mod geometry;
 mod lights;
 mod names;
+mod visibility;
 
 pub use geometry::{Geometry, GeometryError, SphereData, TriangleData};
 pub use names::SceneNames;
@@ -103,6 +104,9 @@ pub struct Scene {
     /// Problems met while building (e.g. a texture file that cannot be
     /// read and was replaced by the flat colour), each named once.
     pub warnings: Vec<String>,
+    /// Whether any material has an opacity texture (rays then continue
+    /// through cut-outs: `visibility.rs`).
+    pub has_cutouts: bool,
     accel: Accel,
     /// Time spent building the acceleration structure.
     pub build_time: Duration,
@@ -167,6 +171,7 @@ impl Scene {
             opts.bvh,
         )?;
         let build_time = start.elapsed();
+        let has_cutouts = materials.iter().any(|m| m.textures.has_opacity());
         Ok(Scene {
             camera,
             geometry,
@@ -175,6 +180,7 @@ impl Scene {
             names,
             unsupported,
             warnings,
+            has_cutouts,
             accel,
             build_time,
         })

@@ -34,9 +34,11 @@ pub struct ImageSettings {
     #[cfg_attr(feature = "cli", arg(skip))]
     pub cell: Option<PixelRect>,
 
-    /// Where the camera comes from: the CS184 orbit framing of the scene's
-    /// bounds, or the file's own camera.
-    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = ImageSettings::default().camera))]
+    /// Where the camera comes from: `cs184` (the CS184 orbit framing of the
+    /// scene's bounds), `file` (the file's own camera, its first if it has
+    /// several), or `N` (the file's camera number N, from 0, in file order:
+    /// glTF camera nodes, Mitsuba sensors).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "cs184|file|N", default_value_t = ImageSettings::default().camera))]
     pub camera: CameraMode,
 
     /// Thin-lens aperture radius in scene units (depth of field; 0 is a
@@ -111,6 +113,21 @@ impl ImageSettings {
             EnvironmentMap::load(path, &options).map_err(|e| bad(&e))?
         };
         Ok(Some(Arc::new(map)))
+    }
+
+    /// Checks the settings that depend on the scene: a camera number must
+    /// name one of the file's `camera_count` cameras.
+    pub fn validate_for_scene(&self, camera_count: usize) -> Result<(), SettingsError> {
+        match self.camera {
+            CameraMode::Numbered(n) => check(
+                n < camera_count,
+                "camera",
+                "--camera",
+                n,
+                format_args!("the file has {camera_count} camera(s), numbered from 0"),
+            ),
+            _ => Ok(()),
+        }
     }
 
     pub(super) fn validate(&self) -> Result<(), SettingsError> {

@@ -244,3 +244,33 @@ fn a_bounce_beyond_the_depth_or_with_a_cs184_view_is_refused() {
         Some("setting `bounce` = -1")
     );
 }
+
+#[test]
+fn the_camera_is_a_name_or_a_file_camera_number() {
+    use crate::camera::framing::CameraMode;
+    let camera = |v: Value| {
+        Settings::resolve(&RenderHints::default(), &changes(json!({ "camera": v })))
+            .map(|s| s.image.camera)
+    };
+    assert_eq!(camera(json!(2)).unwrap(), CameraMode::Numbered(2));
+    assert_eq!(camera(json!("1")).unwrap(), CameraMode::Numbered(1));
+    assert_eq!(camera(json!("file")).unwrap(), CameraMode::File);
+    assert!(camera(json!("front")).is_err());
+    assert!(camera(json!(-1)).is_err());
+    for mode in [CameraMode::Cs184, CameraMode::File, CameraMode::Numbered(3)] {
+        assert_eq!(mode.to_string().parse::<CameraMode>().unwrap(), mode);
+        assert_eq!(
+            serde_json::from_value::<CameraMode>(serde_json::to_value(mode).unwrap()).unwrap(),
+            mode
+        );
+    }
+    let mut s = Settings::default();
+    s.image.camera = CameraMode::Numbered(2);
+    assert!(s.image.validate_for_scene(3).is_ok());
+    let e = s.image.validate_for_scene(2).unwrap_err().to_string();
+    assert!(e.contains("--camera") && e.contains("2 camera(s)"), "{e}");
+    assert!(
+        ImageSettings::default().validate_for_scene(0).is_ok(),
+        "cs184 needs no camera"
+    );
+}

@@ -7,16 +7,23 @@
 //! addressing wraps around (the image tiles the plane), so `u = 1.25` reads
 //! what `u = 0.25` reads.
 //!
-//! Images are read once per path and colour space ([`TextureCache`])
-//! through candela-image, whose readers decode PNG from sRGB and take EXR as
-//! linear; a description that declares another [`ColorSpace`] for a file
-//! (linear data in a PNG) has that undone. Texels are linear RGB.
+//! Images are read once per path and colour space ([`TextureCache`]).
+//! PNG texels are taken from the file's stored values: decoded from sRGB
+//! when the description says [`ColorSpace::Srgb`] (colour, emission), and
+//! exactly `v / 255` when it says [`ColorSpace::Linear`] (roughness,
+//! metalness, normal maps, opacity), so data maps are not bent by a
+//! transfer curve and back. EXR holds linear values; one declared sRGB is
+//! decoded. Alpha, when the file has it, is kept beside the colour (always
+//! linear: it is coverage, not colour), for opacity slots. Texels are
+//! linear RGB.
 
 mod cache;
+mod slot;
 
 pub use cache::TextureCache;
+pub use slot::SlotTexture;
 
-use candela_image::{read_exr, read_png, srgb_decode, srgb_encode, ImageError, RgbImage};
+use candela_image::{read_exr, read_png, read_png_stored, srgb_decode, ImageError, RgbImage};
 use candela_scene::ColorSpace;
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
@@ -70,6 +77,8 @@ pub struct ImageTexture {
     height: usize,
     /// Row-major, row 0 at the top of the image (`v = 1`).
     texels: Vec<Vec3>,
+    /// The alpha channel, laid out as `texels`, when the file has one.
+    alpha: Option<Vec<f32>>,
 }
 
 impl std::fmt::Debug for ImageTexture {
@@ -95,6 +104,7 @@ impl ImageTexture {
             width,
             height,
             texels,
+            alpha: None,
         })
     }
 
@@ -103,22 +113,51 @@ impl ImageTexture {
         Self::from_image(&read_linear_image(path)?)
     }
 
-    /// Reads a PNG or EXR file whose stored values are in `color_space`.
+    /// Reads a PNG or EXR file whose stored values are in `color_space`
+    /// (see the module docs); a PNG's alpha channel is kept.
     pub fn load_in(path: &Path, color_space: ColorSpace) -> Result<Self, TextureError> {
+        if native_color_space(path) == ColorSpace::Srgb {
+            return Self::load_png_stored(path, color_space);
+        }
         let mut texture = Self::load(path)?;
-        let convert: Option<fn(f32) -> f32> = match (native_color_space(path), color_space) {
-            // The reader decoded sRGB that was really linear data: undo it.
-            (ColorSpace::Srgb, ColorSpace::Linear) => Some(srgb_encode),
+        if color_space == ColorSpace::Srgb {
             // The reader took as linear what is sRGB-encoded.
-            (ColorSpace::Linear, ColorSpace::Srgb) => Some(srgb_decode),
-            _ => None,
-        };
-        if let Some(f) = convert {
             for t in &mut texture.texels {
-                *t = Vec3::new(f(t.x), f(t.y), f(t.z));
+                *t = t.to_array().map(srgb_decode).into();
             }
         }
         Ok(texture)
+    }
+
+    /// A PNG from its stored values, decoded from sRGB or not.
+    fn load_png_stored(path: &Path, color_space: ColorSpace) -> Result<Self, TextureError> {
+        let stored = read_png_stored(path)?;
+        if stored.width == 0 || stored.height == 0 {
+            return Err(TextureError::Empty);
+        }
+        let decode = |v: f32| match color_space {
+            ColorSpace::Srgb => srgb_decode(v),
+            ColorSpace::Linear => v,
+        };
+        let texels = stored
+            .pixels
+            .iter()
+            .map(|p| Vec3::new(decode(p[0]), decode(p[1]), decode(p[2])))
+            .collect();
+        let alpha = stored
+            .has_alpha
+            .then(|| stored.pixels.iter().map(|p| p[3]).collect());
+        Ok(Self {
+            width: stored.width,
+            height: stored.height,
+            texels,
+            alpha,
+        })
+    }
+
+    /// Whether the image has an alpha channel.
+    pub fn has_alpha(&self) -> bool {
+        self.alpha.is_some()
     }
 
     /// Width and height in texels.
@@ -129,15 +168,41 @@ impl ImageTexture {
     /// Texel at column `i`, row `j` counted from the **bottom**, wrapped
     /// into the image.
     pub fn texel(&self, i: i64, j: i64) -> Vec3 {
-        let i = i.rem_euclid(self.width as i64) as usize;
-        let j = j.rem_euclid(self.height as i64) as usize;
-        self.texels[(self.height - 1 - j) * self.width + i]
+        self.texels[self.texel_index(i, j)]
     }
 
     /// Bilinear value at `uv`, wrapping around.
     pub fn lookup(&self, uv: Vec2) -> Vec3 {
+        self.bilinear(uv, |i, j| self.texel(i, j))
+    }
+
+    /// Bilinear value of channel `c` (0 R, 1 G, 2 B, 3 alpha; 1 when the
+    /// image has no alpha) at `uv`, wrapping around.
+    pub fn lookup_channel(&self, uv: Vec2, c: u8) -> f32 {
+        match (c, &self.alpha) {
+            (0..=2, _) => {
+                self.bilinear(uv, |i, j| Vec3::splat(self.texel(i, j)[c as usize]))
+                    .x
+            }
+            (_, Some(alpha)) => {
+                self.bilinear(uv, |i, j| Vec3::splat(alpha[self.texel_index(i, j)]))
+                    .x
+            }
+            (_, None) => 1.0,
+        }
+    }
+
+    /// Row-major index of texel `(i, j)` (`j` from the bottom), wrapped.
+    fn texel_index(&self, i: i64, j: i64) -> usize {
+        let i = i.rem_euclid(self.width as i64) as usize;
+        let j = j.rem_euclid(self.height as i64) as usize;
+        (self.height - 1 - j) * self.width + i
+    }
+
+    /// Bilinear interpolation of `texel` between the four centres nearest `uv`.
+    fn bilinear(&self, uv: Vec2, texel: impl Fn(i64, i64) -> Vec3) -> Vec3 {
         if !uv.is_finite() {
-            return self.texel(0, 0);
+            return texel(0, 0);
         }
         // Continuous texel coordinates whose integers are texel centres.
         let x = f64::from(uv.x) * self.width as f64 - 0.5;
@@ -145,8 +210,8 @@ impl ImageTexture {
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
         let (i, j) = (x0 as i64, y0 as i64);
-        let bottom = self.texel(i, j).lerp(self.texel(i + 1, j), fx);
-        let top = self.texel(i, j + 1).lerp(self.texel(i + 1, j + 1), fx);
+        let bottom = texel(i, j).lerp(texel(i + 1, j), fx);
+        let top = texel(i, j + 1).lerp(texel(i + 1, j + 1), fx);
         bottom.lerp(top, fy)
     }
 

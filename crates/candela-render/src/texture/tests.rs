@@ -3,6 +3,7 @@
 
 use super::*;
 use candela_image::{write_exr, ExrLayers};
+use candela_scene::ColorSpace;
 use std::sync::Arc;
 
 /// 3 × 2 texels; image row 0 (the top, v = 1) is `TOP`.
@@ -105,4 +106,69 @@ fn the_cache_loads_once_and_reports_a_missing_file_once() {
     assert!(problems[0].contains("missing.png"), "{problems:?}");
     assert!(problems[1].contains("unknown image format"), "{problems:?}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// 2 × 2 RGBA texels with known stored bytes, row 0 at the top.
+const STORED: [[u8; 4]; 4] = [
+    [0, 64, 128, 255],
+    [255, 128, 32, 0],
+    [10, 20, 30, 40],
+    [200, 100, 50, 128],
+];
+
+fn write_rgba_png(path: &std::path::Path) {
+    let file = std::fs::File::create(path).unwrap();
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), 2, 2);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().unwrap();
+    writer.write_image_data(STORED.as_flattened()).unwrap();
+}
+
+#[test]
+fn a_2x2_png_decodes_to_its_known_values_in_either_colour_space() {
+    let dir = candela_testkit::TempDir::new("png-2x2");
+    let path = dir.join("known.png");
+    write_rgba_png(&path);
+    let mut cache = TextureCache::new();
+    let linear = cache.get_in(&path, ColorSpace::Linear).unwrap();
+    let srgb = cache.get_in(&path, ColorSpace::Srgb).unwrap();
+    assert!(linear.has_alpha() && srgb.has_alpha());
+    for (k, texel) in STORED.iter().enumerate() {
+        // Row k / 2 from the top is j = 1 − k / 2 from the bottom.
+        let (i, j) = ((k % 2) as i64, 1 - (k / 2) as i64);
+        let uv = Vec2::new((i as f32 + 0.5) / 2.0, (j as f32 + 0.5) / 2.0);
+        let stored = texel.map(|b| f32::from(b) / 255.0);
+        // Data: exactly the stored value, no transfer curve and back.
+        assert_eq!(
+            linear.texel(i, j),
+            Vec3::new(stored[0], stored[1], stored[2])
+        );
+        for c in 0..4u8 {
+            assert_eq!(
+                linear.lookup_channel(uv, c),
+                stored[c as usize],
+                "texel {k} channel {c}"
+            );
+        }
+        // Colour: decoded from sRGB; alpha is coverage and stays linear.
+        let decoded = Vec3::new(
+            srgb_decode(stored[0]),
+            srgb_decode(stored[1]),
+            srgb_decode(stored[2]),
+        );
+        assert_eq!(srgb.texel(i, j), decoded);
+        assert_eq!(srgb.lookup_channel(uv, 3), stored[3]);
+    }
+    // A slot reading one channel (glTF roughness in G) sees it as grey.
+    let slot = SlotTexture {
+        image: linear.clone(),
+        scale: 0.5,
+        channel: Some(1),
+    };
+    let uv = Vec2::new(0.25, 0.75);
+    assert_eq!(slot.color(uv), Vec3::splat(64.0 / 255.0 * 0.5));
+    assert_eq!(slot.value(uv, 0), 64.0 / 255.0 * 0.5);
+    // sRGB code 188 is linear 0.5 (to 3 digits), the classic check.
+    assert!((srgb_decode(188.0 / 255.0) - 0.5029).abs() < 1e-3);
 }

@@ -103,12 +103,17 @@ impl TextureRef {
 pub enum TextureSlot {
     /// Base colour: the BSDF's albedo, reflectance or transmittance.
     Color,
-    /// Roughness (a dielectric's `roughness`, a conductor's `alpha`).
+    /// Roughness (a dielectric's `roughness`, a conductor's `alpha`, the
+    /// metallic-roughness model's perceptual roughness).
     Roughness,
     /// Metalness in [0, 1]; 0 when no texture says otherwise.
     Metalness,
     /// Tangent-space normal map; the geometry's shading normal otherwise.
     Normal,
+    /// Bump (height) map: the shading normal of the surface displaced by
+    /// the value (times the scale) along its normal, in scene units per
+    /// unit of UV (OBJ `bump`/`map_Bump`, Mitsuba `bumpmap`).
+    Bump,
     /// Emitted radiance, replacing [`MaterialDesc::emission`].
     Emission,
     /// Opacity in [0, 1] (cut-outs); 1 when no texture says otherwise.
@@ -117,11 +122,12 @@ pub enum TextureSlot {
 
 impl TextureSlot {
     /// Every slot, in declaration order.
-    pub const ALL: [TextureSlot; 6] = [
+    pub const ALL: [TextureSlot; 7] = [
         TextureSlot::Color,
         TextureSlot::Roughness,
         TextureSlot::Metalness,
         TextureSlot::Normal,
+        TextureSlot::Bump,
         TextureSlot::Emission,
         TextureSlot::Opacity,
     ];
@@ -133,6 +139,7 @@ impl TextureSlot {
             TextureSlot::Roughness => "roughness",
             TextureSlot::Metalness => "metalness",
             TextureSlot::Normal => "normal map",
+            TextureSlot::Bump => "bump map",
             TextureSlot::Emission => "emission",
             TextureSlot::Opacity => "opacity",
         }
@@ -159,10 +166,17 @@ pub struct TextureSlots {
     pub metalness: Option<TextureRef>,
     /// Tangent-space normal map.
     pub normal: Option<TextureRef>,
+    /// Bump (height) map.
+    pub bump: Option<TextureRef>,
     /// Emitted radiance.
     pub emission: Option<TextureRef>,
     /// Opacity.
     pub opacity: Option<TextureRef>,
+    /// How the opacity slot's value is read: `None` as a coverage fraction
+    /// (a point of opacity a is kept with probability a, glTF `BLEND`),
+    /// `Some(c)` as a mask (opaque where the value is at least c, cut out
+    /// below: glTF `MASK` with its `alphaCutoff`).
+    pub opacity_cutoff: Option<f32>,
 }
 
 impl TextureSlots {
@@ -189,6 +203,7 @@ impl TextureSlots {
             TextureSlot::Roughness => &self.roughness,
             TextureSlot::Metalness => &self.metalness,
             TextureSlot::Normal => &self.normal,
+            TextureSlot::Bump => &self.bump,
             TextureSlot::Emission => &self.emission,
             TextureSlot::Opacity => &self.opacity,
         }
@@ -200,6 +215,7 @@ impl TextureSlots {
             TextureSlot::Roughness => &mut self.roughness,
             TextureSlot::Metalness => &mut self.metalness,
             TextureSlot::Normal => &mut self.normal,
+            TextureSlot::Bump => &mut self.bump,
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
         }
@@ -302,6 +318,21 @@ pub enum BsdfDesc {
     },
     /// Black: absorbs everything (the BSDF of a pure emitter).
     Black,
+    /// The glTF 2.0 metallic-roughness model (Lambert base, GGX specular
+    /// with Schlick Fresnel, mixed by metalness) with
+    /// `KHR_materials_transmission` and `KHR_materials_ior`.
+    MetallicRoughness {
+        /// Base colour (linear), per channel in [0, 1].
+        base_color: Vec3,
+        /// Metalness in [0, 1].
+        metallic: f32,
+        /// Perceptual roughness in [0, 1] (α = roughness²).
+        roughness: f32,
+        /// Fraction of the dielectric part that is transmitted, in [0, 1].
+        transmission: f32,
+        /// Index of refraction (1.5 by default).
+        ior: f32,
+    },
 }
 
 /// Microfacet normal distributions.

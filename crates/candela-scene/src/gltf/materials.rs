@@ -1,20 +1,17 @@
-//! glTF metallic-roughness materials onto Candela's BSDF models, with every
-//! texture in its slot (the renderer names the slots it cannot use yet).
-//!
-//! - `KHR_materials_transmission` > 0: [`BsdfDesc::Glass`] (base colour as
-//!   transmittance, `KHR_materials_ior`, default 1.5).
-//! - metallic ≥ 0.5: a conductor whose normal-incidence reflectance is the
-//!   base colour: [`BsdfDesc::Microfacet`] with η = 1 and
-//!   k = 2 √(F0 / (1 − F0)) (then F0 = k² / (4 + k²) exactly), α =
-//!   roughness² (glTF's GGX α, used as the Beckmann α), or
-//!   [`BsdfDesc::Mirror`] when α is below [`MIRROR_ALPHA`].
-//! - otherwise [`BsdfDesc::Diffuse`] with the base colour (the 4 % dielectric
-//!   specular layer of glTF is dropped; a principled BSDF is its own issue).
+//! glTF metallic-roughness materials, read as what they are:
+//! [`BsdfDesc::MetallicRoughness`] (the renderer's glTF BSDF: Lambert base,
+//! GGX specular with Schlick Fresnel, mixed by metalness), with
+//! `KHR_materials_transmission` (`transmissionFactor`) and
+//! `KHR_materials_ior` (1.5 by default), and every texture in its slot.
 //!
 //! A factor that multiplies a texture becomes the texture's scale; the
 //! slot's scale is one number, so a non-grey colour factor is averaged (and
-//! reported). Occlusion textures are not read: a path tracer computes
-//! occlusion itself.
+//! reported). Alpha: `MASK` puts the base colour's alpha in the opacity
+//! slot with `alphaCutoff` (0.5 by default) as the slot's cutoff; `BLEND`
+//! puts it there as a coverage fraction (stochastic opacity: a point of
+//! alpha a is kept with probability a, which averages to the blended look
+//! without ordering transparent surfaces). Occlusion textures are not read:
+//! a path tracer computes occlusion itself.
 
 use super::accessors::Buffers;
 use super::textures::texture_ref;
@@ -23,10 +20,6 @@ use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, TextureSlot};
 use crate::error::LoadError;
 use glam::Vec3;
 use gltf::material::AlphaMode;
-
-/// Below this α a metal is a perfect mirror (the microfacet model clamps
-/// smaller roughness anyway).
-pub(super) const MIRROR_ALPHA: f32 = 1e-3;
 
 /// Reads material `m` with its textures.
 pub(super) fn read_material(
@@ -39,31 +32,22 @@ pub(super) fn read_material(
     let base = Vec3::new(r, g, b);
     let metal = pbr.metallic_factor();
     let rough = pbr.roughness_factor();
-    let bsdf = if let Some(t) = m.transmission().filter(|t| t.transmission_factor() > 0.0) {
-        if t.transmission_factor() < 1.0 || t.transmission_texture().is_some() {
-            ctx.warn(
-                "KHR_materials_transmission",
-                "partial transmission is drawn as fully transmissive glass",
-            )?;
-        }
-        BsdfDesc::Glass {
-            reflectance: Vec3::ONE,
-            transmittance: base,
-            roughness: rough,
-            ior: m.ior().unwrap_or(1.5),
-        }
-    } else {
-        if metal > 0.0 && metal < 1.0 && pbr.metallic_roughness_texture().is_none() {
-            ctx.warn(
-                "metallicFactor",
-                "a factor between 0 and 1 is rounded to a pure dielectric or metal",
-            )?;
-        }
-        if metal >= 0.5 {
-            conductor(base, rough)
-        } else {
-            BsdfDesc::Diffuse { albedo: base }
-        }
+    let transmission = m.transmission();
+    if transmission
+        .as_ref()
+        .is_some_and(|t| t.transmission_texture().is_some())
+    {
+        ctx.warn(
+            "transmissionTexture",
+            "the transmission texture is not read; its factor is used",
+        )?;
+    }
+    let bsdf = BsdfDesc::MetallicRoughness {
+        base_color: base,
+        metallic: metal,
+        roughness: rough,
+        transmission: transmission.map_or(0.0, |t| t.transmission_factor()),
+        ior: m.ior().unwrap_or(1.5),
     };
     let strength = m.emissive_strength().unwrap_or(1.0);
     let emissive = Vec3::from(m.emissive_factor()) * strength;
@@ -138,12 +122,6 @@ pub(super) fn read_material(
     match m.alpha_mode() {
         AlphaMode::Opaque => {}
         mode => {
-            if mode == AlphaMode::Mask {
-                ctx.warn(
-                    "alphaCutoff",
-                    "the opacity slot holds alpha as a coverage fraction; the cutoff is not applied",
-                )?;
-            }
             if base_tex.is_some() {
                 slot(
                     TextureSlot::Opacity,
@@ -152,6 +130,9 @@ pub(super) fn read_material(
                     alpha,
                     Some(3),
                 )?;
+                if mode == AlphaMode::Mask {
+                    desc.textures.opacity_cutoff = Some(m.alpha_cutoff().unwrap_or(0.5));
+                }
             } else if alpha < 1.0 {
                 ctx.warn(
                     "alphaMode",
@@ -166,20 +147,6 @@ pub(super) fn read_material(
 /// A texture reference's texture and UV set.
 fn info(i: Option<gltf::texture::Info<'_>>) -> Option<(gltf::Texture<'_>, u32)> {
     i.map(|i| (i.texture(), i.tex_coord()))
-}
-
-/// A conductor reflecting `f0` at normal incidence, with glTF roughness `rough`.
-pub(super) fn conductor(f0: Vec3, rough: f32) -> BsdfDesc {
-    let alpha = rough * rough;
-    if alpha < MIRROR_ALPHA {
-        return BsdfDesc::Mirror { reflectance: f0 };
-    }
-    let f0 = f0.clamp(Vec3::ZERO, Vec3::splat(0.999));
-    BsdfDesc::Microfacet {
-        alpha,
-        eta: Vec3::ONE,
-        k: (f0 / (Vec3::ONE - f0)).map(f32::sqrt) * 2.0,
-    }
 }
 
 /// The one number a texture slot's scale can hold for a colour factor: the

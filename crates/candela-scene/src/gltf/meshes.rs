@@ -92,7 +92,12 @@ pub(super) fn read_primitive(
         desc.normal_indices = triangles.clone();
     }
     if let Some(acc) = attribute(&Semantic::TexCoords(0))? {
-        desc.uvs = accessors::vec2(ctx, buffers, &acc)?;
+        // glTF's UV origin is the image's top-left corner (v runs down);
+        // Candela's v runs bottom to top (OpenGL's, COLLADA's, OBJ's).
+        desc.uvs = accessors::vec2(ctx, buffers, &acc)?
+            .into_iter()
+            .map(|uv| glam::Vec2::new(uv.x, 1.0 - uv.y))
+            .collect();
         desc.uv_indices = triangles.clone();
     }
     if prim.get(&Semantic::Tangents).is_some() {

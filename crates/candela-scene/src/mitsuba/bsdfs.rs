@@ -9,7 +9,7 @@
 //! | `roughdielectric` | `RoughDielectric` (alpha, beckmann or ggx) |
 //! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth), `material` presets (the measured metals of [`crate::metals`]) or eta/k; a smooth `none` with `specular_reflectance` is a `Mirror` of that reflectance |
 //! | `plastic`, `roughplastic` | `Plastic` (alpha 0 when smooth), with `nonlinear` |
-//! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the normal-map slot |
+//! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the bump (height) or normal-map slot |
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot |
 //!
 //! Mitsuba BSDFs Candela lacks (`principled`, `blendbsdf`, `null`, ...) are
@@ -241,14 +241,12 @@ impl Builder {
         match kind {
             "bumpmap" | "normalmap" => {
                 if let Some(tex) = self.map_texture(doc, node)? {
-                    m.textures.set(TextureSlot::Normal, tex);
-                }
-                if kind == "bumpmap" {
-                    self.warn(
-                        doc,
-                        node,
-                        "a bump (height) map is given to the normal-map slot",
-                    )?;
+                    let slot = if kind == "bumpmap" {
+                        TextureSlot::Bump
+                    } else {
+                        TextureSlot::Normal
+                    };
+                    m.textures.set(slot, tex);
                 }
             }
             "mask" => {

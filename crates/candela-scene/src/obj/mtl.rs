@@ -15,7 +15,8 @@
 //!   lobe beside a diffuse one is reported and dropped.
 //! - `Ke` > 0 makes the material emissive (an area light, like COLLADA's
 //!   CGL emission); `map_Kd` and `map_Ke` fill the colour and emission
-//!   slots, `map_Bump`/`bump`/`norm` the normal-map slot and `map_d` the
+//!   slots, `map_Bump`/`bump` the bump (height) slot, `norm` the
+//!   normal-map slot and `map_d` the
 //!   opacity slot. `Ka` is meaningless for a path tracer and skipped.
 
 use super::statements::{error, number, statements, Statement};
@@ -140,9 +141,10 @@ fn statement(
         }
         "map_Kd" => map(file, st, raw, TextureSlot::Color, warnings)?,
         "map_Ke" => map(file, st, raw, TextureSlot::Emission, warnings)?,
-        "map_Bump" | "map_bump" | "bump" | "norm" => {
-            map(file, st, raw, TextureSlot::Normal, warnings)?
-        }
+        // The MTL specification's bump maps are heights; `norm` is a
+        // tangent-space normal map.
+        "map_Bump" | "map_bump" | "bump" => map(file, st, raw, TextureSlot::Bump, warnings)?,
+        "norm" => map(file, st, raw, TextureSlot::Normal, warnings)?,
         "map_d" => map(file, st, raw, TextureSlot::Opacity, warnings)?,
         other => {
             let message = IGNORED

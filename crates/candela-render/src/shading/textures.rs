@@ -1,0 +1,274 @@
+//! A material's texture slots at a hit: every parameter the description can
+//! texture (colour, roughness, metalness, normal map, emission, opacity) is
+//! read at the hit's `uv` and put into the BSDF it belongs to.
+//!
+//! What each slot drives, per BSDF:
+//!
+//! | slot | drives |
+//! |---|---|
+//! | colour | diffuse albedo; mirror reflectance; glass, refraction, thin and rough glass transmittance (the tint); smooth and rough plastic base; glTF base colour; a smooth or rough conductor's normal-incidence reflectance F0 (η = 1, k = 2√(F0/(1−F0)), exact for F0) |
+//! | roughness (R, or the slot's channel) | rough conductor and rough glass α; a smooth conductor becomes a Beckmann rough conductor of α = value (as Mitsuba's `roughconductor` default); smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF perceptual roughness |
+//! | metalness (B by default, glTF's channel) | glTF metalness |
+//! | normal map, bump map | the shading normal (`normal_map.rs`) |
+//! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
+//! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
+//!
+//! Colours are clamped to [0, 1] and one-value parameters to their ranges
+//! after scaling, so a texture never creates energy. A slot a BSDF has no
+//! parameter for (roughness on a mirror, thin glass or smooth plastic,
+//! metalness outside the glTF model, any of colour/roughness/metalness on a
+//! pure emitter) is returned as unsupported, by name.
+
+use crate::bsdf::{Bsdf, MicrofacetDistribution};
+use crate::texture::{SlotTexture, TextureCache};
+use candela_scene::{TextureSlot, TextureSlots};
+use glam::{Vec2, Vec3};
+
+/// The channel one-value slots read when the description names none.
+const DEFAULT_CHANNEL: u8 = 0;
+/// glTF and most packers keep metalness in blue.
+const METALNESS_CHANNEL: u8 = 2;
+/// Alpha: opacity's default when the image has it.
+const ALPHA_CHANNEL: u8 = 3;
+
+/// The textures of one material, read once at scene build.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MaterialTextures {
+    /// Base colour.
+    pub color: Option<SlotTexture>,
+    /// Roughness (α, or glTF's perceptual roughness).
+    pub roughness: Option<SlotTexture>,
+    /// Metalness.
+    pub metalness: Option<SlotTexture>,
+    /// Tangent-space normal map.
+    pub normal: Option<SlotTexture>,
+    /// Bump (height) map.
+    pub bump: Option<SlotTexture>,
+    /// Emitted radiance.
+    pub emission: Option<SlotTexture>,
+    /// Opacity.
+    pub opacity: Option<SlotTexture>,
+    /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
+    /// fraction.
+    pub opacity_cutoff: Option<f32>,
+}
+
+impl MaterialTextures {
+    /// Reads every filled slot through `cache` and names the slots `bsdf`
+    /// cannot use (the caller reports them).
+    pub fn from_slots(
+        slots: &TextureSlots,
+        bsdf: Option<&Bsdf>,
+        cache: &mut TextureCache,
+    ) -> (Self, Vec<TextureSlot>) {
+        let mut textures = Self {
+            opacity_cutoff: slots.opacity_cutoff,
+            ..Self::default()
+        };
+        let mut unusable = Vec::new();
+        for (slot, t) in slots.iter() {
+            if !drives(bsdf, slot) {
+                unusable.push(slot);
+                continue;
+            }
+            let loaded = SlotTexture::load(t, cache);
+            *textures.slot_mut(slot) = loaded;
+        }
+        (textures, unusable)
+    }
+
+    fn slot_mut(&mut self, slot: TextureSlot) -> &mut Option<SlotTexture> {
+        match slot {
+            TextureSlot::Color => &mut self.color,
+            TextureSlot::Roughness => &mut self.roughness,
+            TextureSlot::Metalness => &mut self.metalness,
+            TextureSlot::Normal => &mut self.normal,
+            TextureSlot::Bump => &mut self.bump,
+            TextureSlot::Emission => &mut self.emission,
+            TextureSlot::Opacity => &mut self.opacity,
+        }
+    }
+
+    /// Whether any slot that changes the BSDF is filled.
+    fn textures_bsdf(&self) -> bool {
+        self.color.is_some() || self.roughness.is_some() || self.metalness.is_some()
+    }
+
+    /// `bsdf` with its textured parameters read at `uv`.
+    pub fn apply(&self, bsdf: Bsdf, uv: Vec2) -> Bsdf {
+        if !self.textures_bsdf() {
+            return bsdf;
+        }
+        let color = self
+            .color
+            .as_ref()
+            .map(|t| t.color(uv).clamp(Vec3::ZERO, Vec3::ONE));
+        let roughness = self
+            .roughness
+            .as_ref()
+            .map(|t| t.value(uv, DEFAULT_CHANNEL).max(0.0));
+        match bsdf {
+            Bsdf::Diffuse { albedo } => Bsdf::Diffuse {
+                albedo: color.unwrap_or(albedo),
+            },
+            Bsdf::Mirror { reflectance } => Bsdf::Mirror {
+                reflectance: color.unwrap_or(reflectance),
+            },
+            Bsdf::Glass {
+                reflectance,
+                transmittance,
+                ior,
+            } => glass(reflectance, color.unwrap_or(transmittance), roughness, ior),
+            Bsdf::Refraction { transmittance, ior } => match roughness {
+                Some(_) => glass(Vec3::ZERO, color.unwrap_or(transmittance), roughness, ior),
+                None => Bsdf::Refraction {
+                    transmittance: color.unwrap_or(transmittance),
+                    ior,
+                },
+            },
+            Bsdf::ThinGlass {
+                reflectance,
+                transmittance,
+                ior,
+            } => Bsdf::ThinGlass {
+                reflectance,
+                transmittance: color.unwrap_or(transmittance),
+                ior,
+            },
+            Bsdf::RoughGlass {
+                distribution,
+                reflectance,
+                transmittance,
+                ior,
+            } => Bsdf::RoughGlass {
+                distribution: roughness.map_or(distribution, |a| with_alpha(distribution, a)),
+                reflectance,
+                transmittance: color.unwrap_or(transmittance),
+                ior,
+            },
+            Bsdf::Plastic(p) => Bsdf::Plastic(color.map_or(p, |c| p.with_diffuse(c))),
+            // Roughness is not textured here: each α would need its own
+            // coating table (`bsdf/coating.rs`); `drives` reports it.
+            Bsdf::RoughPlastic(p) => Bsdf::RoughPlastic(color.map_or(p, |c| p.with_diffuse(c))),
+            Bsdf::Conductor { eta, k } => {
+                let (eta, k) = color.map_or((eta, k), conductor_of_reflectance);
+                match roughness {
+                    Some(a) => Bsdf::Microfacet {
+                        distribution: MicrofacetDistribution::beckmann(a),
+                        eta,
+                        k,
+                    },
+                    None => Bsdf::Conductor { eta, k },
+                }
+            }
+            Bsdf::Microfacet {
+                distribution,
+                eta,
+                k,
+            } => {
+                let (eta, k) = color.map_or((eta, k), conductor_of_reflectance);
+                Bsdf::Microfacet {
+                    distribution: roughness.map_or(distribution, |a| with_alpha(distribution, a)),
+                    eta,
+                    k,
+                }
+            }
+            Bsdf::MetallicRoughness(m) => {
+                let (base, metallic, rough) = m.parameters();
+                let metallic = self
+                    .metalness
+                    .as_ref()
+                    .map_or(metallic, |t| t.value(uv, METALNESS_CHANNEL));
+                Bsdf::MetallicRoughness(m.with(
+                    color.unwrap_or(base),
+                    metallic,
+                    roughness.unwrap_or(rough),
+                ))
+            }
+            // Models added later keep their constants until they get an arm.
+            #[allow(unreachable_patterns)]
+            other => other,
+        }
+    }
+
+    /// The textured emission at `uv`, if the emission slot is filled.
+    pub fn emission(&self, uv: Vec2) -> Option<Vec3> {
+        self.emission.as_ref().map(|t| t.color(uv).max(Vec3::ZERO))
+    }
+
+    /// The opacity at `uv` in [0, 1]: 1 without an opacity texture; with a
+    /// cutoff, 1 where the value reaches it and 0 below.
+    pub fn opacity(&self, uv: Vec2) -> f32 {
+        let Some(t) = &self.opacity else {
+            return 1.0;
+        };
+        let channel = if t.image.has_alpha() {
+            ALPHA_CHANNEL
+        } else {
+            DEFAULT_CHANNEL
+        };
+        let value = t.value(uv, channel);
+        match self.opacity_cutoff {
+            Some(cutoff) => f32::from(u8::from(value >= cutoff)),
+            None if value.is_nan() => 1.0,
+            None => value.clamp(0.0, 1.0),
+        }
+    }
+
+    /// Whether the material has cut-outs at all.
+    pub fn has_opacity(&self) -> bool {
+        self.opacity.is_some()
+    }
+}
+
+/// Whether a texture in `slot` changes something on a material of `bsdf`
+/// (see the table in the module docs).
+fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
+    match (slot, bsdf) {
+        (TextureSlot::Emission | TextureSlot::Opacity, _) => true,
+        (_, None) => false,
+        (TextureSlot::Color | TextureSlot::Normal | TextureSlot::Bump, Some(_)) => true,
+        (TextureSlot::Metalness, Some(b)) => matches!(b, Bsdf::MetallicRoughness(_)),
+        (TextureSlot::Roughness, Some(b)) => !matches!(
+            b,
+            Bsdf::Diffuse { .. }
+                | Bsdf::Mirror { .. }
+                | Bsdf::ThinGlass { .. }
+                | Bsdf::Plastic(_)
+                | Bsdf::RoughPlastic(_)
+        ),
+    }
+}
+
+/// Glass with an optional textured roughness: rough (Beckmann, α = the
+/// value) when a roughness texture is given, else smooth.
+fn glass(reflectance: Vec3, transmittance: Vec3, roughness: Option<f32>, ior: f32) -> Bsdf {
+    match roughness {
+        Some(alpha) => Bsdf::RoughGlass {
+            distribution: MicrofacetDistribution::beckmann(alpha),
+            reflectance,
+            transmittance,
+            ior,
+        },
+        None => Bsdf::Glass {
+            reflectance,
+            transmittance,
+            ior,
+        },
+    }
+}
+
+/// The same distribution (kind) with isotropic roughness `alpha`.
+fn with_alpha(d: MicrofacetDistribution, alpha: f32) -> MicrofacetDistribution {
+    match d {
+        MicrofacetDistribution::Beckmann { .. } => MicrofacetDistribution::beckmann(alpha),
+        MicrofacetDistribution::Ggx { .. } => MicrofacetDistribution::ggx(alpha),
+    }
+}
+
+/// A conductor whose normal-incidence reflectance is `f0`: η = 1 and
+/// k = 2√(F0/(1−F0)), since ((η−1)² + k²)/((η+1)² + k²) = k²/(4 + k²) = F0.
+fn conductor_of_reflectance(f0: Vec3) -> (Vec3, Vec3) {
+    let f0 = f0.clamp(Vec3::ZERO, Vec3::splat(0.999));
+    (Vec3::ONE, (f0 / (Vec3::ONE - f0)).map(f32::sqrt) * 2.0)
+}
