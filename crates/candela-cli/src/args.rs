@@ -41,6 +41,9 @@ pub enum Command {
     /// Benchmarks of the acceleration structure and of scene loading.
     #[command(subcommand)]
     Bench(crate::bench::BenchCommand),
+    /// Candela Studio: view and render the scene interactively in the
+    /// browser (a local server; prints its URL).
+    View(crate::view_cmd::ViewArgs),
 }
 
 /// Flags of a render.
@@ -229,7 +232,7 @@ pub fn parse() -> (Cli, ArgMatches) {
 mod tests;
 
 /// `NAME=VALUE` of `-D`: the name non-empty, the value possibly empty.
-fn parse_define(text: &str) -> Result<(String, String), String> {
+pub fn parse_define(text: &str) -> Result<(String, String), String> {
     match text.split_once('=') {
         Some((name, value)) if !name.trim().is_empty() => {
             Ok((name.trim().to_string(), value.to_string()))

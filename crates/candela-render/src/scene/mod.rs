@@ -12,7 +12,7 @@ pub use geometry::{Geometry, GeometryError, SphereData, TriangleData};
 
 use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
-use crate::camera::Camera;
+use crate::camera::{Camera, CameraView};
 use crate::geometry::Ray;
 use crate::light::{EnvironmentMap, EnvironmentOptions, LightSet};
 use crate::material::Material;
@@ -47,6 +47,9 @@ pub struct SceneOptions {
     /// An environment map lighting the scene from infinity, in addition to
     /// the file's own lights (CS184 `-e`).
     pub environment: Option<Arc<EnvironmentMap>>,
+    /// An explicit placement replacing the framing's (`--eye`, `--look-at`,
+    /// `--up`, `--fov`; the viewer's camera); the lens options still apply.
+    pub view: Option<CameraView>,
 }
 
 impl Default for SceneOptions {
@@ -59,6 +62,7 @@ impl Default for SceneOptions {
             lens_radius: 0.0,
             focal_distance: None,
             environment: None,
+            view: None,
         }
     }
 }
@@ -107,8 +111,7 @@ pub struct Scene {
 impl Scene {
     /// Builds the render-ready scene from a description.
     pub fn build(desc: &SceneDesc, opts: &SceneOptions) -> Result<Scene, SceneError> {
-        let mut camera = frame_scene(desc, opts.camera_mode, opts.width, opts.height)?;
-        apply_lens(&mut camera, opts)?;
+        let camera = Scene::camera_for(desc, opts)?;
         let geometry = Geometry::from_desc(desc)?;
         let mut unsupported: Vec<String> = Vec::new();
         let mut textures = TextureCache::new();
@@ -170,6 +173,19 @@ impl Scene {
             accel,
             build_time,
         })
+    }
+
+    /// The camera of `opts` for `desc`: framed ([`frame_scene`]), moved to
+    /// the explicit view if any ([`Camera::with_view`]), then the lens
+    /// options. Cheap: a viewer calls it to move the camera of a built
+    /// scene without rebuilding it.
+    pub fn camera_for(desc: &SceneDesc, opts: &SceneOptions) -> Result<Camera, SceneError> {
+        let mut camera = frame_scene(desc, opts.camera_mode, opts.width, opts.height)?;
+        if let Some(view) = &opts.view {
+            camera = camera.with_view(view)?;
+        }
+        apply_lens(&mut camera, opts)?;
+        Ok(camera)
     }
 
     /// The material with index `i`.
