@@ -205,19 +205,29 @@ impl RenderArgs {
     /// scene's own defaults (a demo's camera, a Mitsuba file's spp) must
     /// not override.
     pub fn explicit_settings(&self, matches: &ArgMatches) -> Map<String, Value> {
-        let mut settings = self.settings.clone();
-        let aliased = self.cs184.apply(&mut settings);
-        settings
-            .to_json()
-            .into_iter()
-            .filter(|(key, _)| {
-                aliased.contains(&key.as_str())
-                    || matches
-                        .try_get_raw(key)
-                        .is_ok_and(|_| matches.value_source(key) == Some(ValueSource::CommandLine))
-            })
-            .collect()
+        explicit_settings(&self.settings, &self.cs184, matches)
     }
+}
+
+/// The settings of `settings` and `cs184` given on the command line
+/// (`matches`: of the command that flattens them), as JSON changes.
+pub fn explicit_settings(
+    settings: &Settings,
+    cs184: &Cs184Flags,
+    matches: &ArgMatches,
+) -> Map<String, Value> {
+    let mut settings = settings.clone();
+    let aliased = cs184.apply(&mut settings);
+    settings
+        .to_json()
+        .into_iter()
+        .filter(|(key, _)| {
+            aliased.contains(&key.as_str())
+                || matches
+                    .try_get_raw(key)
+                    .is_ok_and(|_| matches.value_source(key) == Some(ValueSource::CommandLine))
+        })
+        .collect()
 }
 
 /// Parses the command line, keeping the matches (which tell explicit flags

@@ -5,7 +5,9 @@
 use crate::render_cmd::{load_scene, UsageError};
 use anyhow::{Context, Result};
 use candela_studio::{Studio, StudioOptions};
-use clap::Args;
+use crate::args::{explicit_settings, Cs184Flags};
+use candela_render::settings::Settings;
+use clap::{ArgMatches, Args};
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
@@ -37,13 +39,27 @@ pub struct ViewArgs {
     #[arg(long)]
     pub strict: bool,
 
+    /// The starting render settings (the side panel changes them).
+    #[command(flatten)]
+    pub settings: Settings,
+
+    /// CS184 spellings of settings.
+    #[command(flatten, next_help_heading = "CS184 flags")]
+    pub cs184: Cs184Flags,
+
     /// Sets a scene parameter (Mitsuba's `$name`): `-D spp=16`.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = crate::args::parse_define)]
     pub defines: Vec<(String, String)>,
 }
 
-/// Runs the viewer until the process is stopped.
-pub fn run(args: &ViewArgs) -> Result<()> {
+/// Runs the viewer until the process is stopped. `matches` are the
+/// command line's, to tell explicit settings from defaults.
+pub fn run(args: &ViewArgs, matches: &ArgMatches) -> Result<()> {
+    let view_matches = matches.subcommand_matches("view").unwrap_or(matches);
+    let explicit = explicit_settings(&args.settings, &args.cs184, view_matches);
+    let mut given = args.settings.clone();
+    args.cs184.apply(&mut given);
+    given.validate().map_err(UsageError::from)?;
     let addr = listen_address(args)?;
     if !addr.ip().is_loopback() {
         eprintln!(
@@ -63,6 +79,7 @@ pub fn run(args: &ViewArgs) -> Result<()> {
         scene_path: args.scene.clone(),
         out_dir: args.out_dir.clone(),
         token: None,
+        settings: explicit,
     };
     let studio = Studio::new(loaded, options).map_err(UsageError)?;
     let page = studio.clone();

@@ -20,7 +20,9 @@ use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::{Json, Router};
+use candela_render::camera::{Camera, CameraView};
 use candela_render::render::Cancel;
+use glam::Vec3;
 use candela_render::scene::{Geometry, Scene};
 use candela_render::settings::Settings;
 use candela_scene::Loaded;
@@ -41,6 +43,9 @@ pub struct StudioOptions {
     pub out_dir: PathBuf,
     /// The secret of the URL; `None` makes a fresh one.
     pub token: Option<String>,
+    /// Settings given on the command line (JSON changes over the scene's
+    /// hints); the page's changes go over them.
+    pub settings: Map<String, Value>,
 }
 
 /// A loaded scene ready to serve: what every request reads.
@@ -62,13 +67,14 @@ impl Studio {
     /// Prepares `loaded` for the viewer: the default settings for it (its
     /// hints applied), its starting camera, mesh and BVH.
     pub fn new(loaded: Loaded, opts: StudioOptions) -> Result<Studio, String> {
-        let settings = Settings::resolve(&loaded.hints, &Map::new()).map_err(|e| e.to_string())?;
+        let settings =
+            Settings::resolve(&loaded.hints, &opts.settings).map_err(|e| e.to_string())?;
         let desc = &loaded.scene;
         let camera =
             Scene::camera_for(desc, &settings.camera_options()).map_err(|e| e.to_string())?;
         let geometry = Geometry::from_desc(desc).map_err(|e| e.to_string())?;
         let triangles = mesh::triangles(&geometry);
-        let view = camera.view();
+        let view = orbit_view(&camera, desc.bounds());
         let scene_info = json!({
             "source": desc.source.display().to_string(),
             "width": settings.image.width,
@@ -94,6 +100,7 @@ impl Studio {
                     loaded,
                     path: opts.scene_path,
                     out_dir: opts.out_dir,
+                    base: opts.settings,
                 }),
                 scene_info,
                 mesh: mesh::to_bytes(&triangles),
@@ -112,6 +119,22 @@ impl Studio {
     pub fn url(&self, addr: SocketAddr) -> String {
         format!("http://{addr}/?token={}", self.token())
     }
+}
+
+/// The camera's view with the look-at point moved along the view direction
+/// to the depth of the scene's centre: the page orbits about it (a file
+/// camera's own look-at point is often one unit ahead of the eye). Only
+/// the look-at distance changes, so the camera renders the same image
+/// (pinhole: the distance sets only the plane in focus of a thin lens).
+fn orbit_view(camera: &Camera, bounds: Option<(Vec3, Vec3)>) -> CameraView {
+    let mut view = camera.view();
+    if let Some((lo, hi)) = bounds {
+        let depth = ((lo + hi) * 0.5 - camera.eye).dot(camera.forward);
+        if depth > 0.0 && camera.lens_radius == 0.0 {
+            view.target = camera.eye + camera.forward * depth;
+        }
+    }
+    view
 }
 
 /// The routes, behind the token check.

@@ -75,6 +75,8 @@ pub struct Source {
     pub path: Option<PathBuf>,
     /// Where saved images go.
     pub out_dir: PathBuf,
+    /// Settings given on the command line, under the page's changes.
+    pub base: Map<String, Value>,
 }
 
 /// Starts a worker thread; it runs until the job sender is dropped.
