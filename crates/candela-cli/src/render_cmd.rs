@@ -91,6 +91,8 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches) -> Result<Outcome> {
         tone: settings.output.tone_map(),
         aovs: true,
         sample_counts: adaptive,
+        depth: true,
+        cost: true,
         rate_image: adaptive.then_some(max_samples),
     };
     let written = write_film(&args.output, &output.film, &opts)?;

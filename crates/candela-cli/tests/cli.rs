@@ -108,6 +108,18 @@ fn exr_carries_the_denoiser_layers_and_sample_counts() {
         .iter()
         .all(|&n| (8.0..=16.0).contains(&n) && n % 8.0 == 0.0));
     assert!(dir.join("out_rate.png").exists());
+    // Depth and cost: every camera ray of the closed box hits a wall, and
+    // every sample does traversal work.
+    let extra = |name: &str| match layers.extra.iter().find(|(n, _)| n == name) {
+        Some((_, candela_image::LayerData::Gray(image))) => image.values().to_vec(),
+        _ => panic!(
+            "no scalar layer {name}: {:?}",
+            layers.extra.iter().map(|e| &e.0).collect::<Vec<_>>()
+        ),
+    };
+    assert!(extra("depth").iter().all(|&d| d.is_finite() && d > 0.0));
+    assert!(extra("cost.nodes").iter().all(|&n| n >= 1.0));
+    assert!(extra("cost.prims").iter().all(|&n| n >= 1.0));
 }
 
 #[test]
@@ -164,6 +176,9 @@ fn impossible_flags_are_usage_errors() {
         &["--exposure", "nan"],
         &["-d", "0", "-b", "0.1"],
         &["--integrator", "bdpt"],
+        // A bounce past the depth, or with a view that picks its own.
+        &["-m", "3", "--bounce", "4"],
+        &["--bounce", "1", "--direct-only"],
     ] {
         let run = candela(&[args, &["-q", "-f", "/nonexistent/never.png"]].concat());
         assert_eq!(
@@ -227,4 +242,39 @@ fn ctrl_c_writes_the_partial_image_and_exits_130() {
     assert!(log.contains("interrupted: the image is partial"), "{log}");
     let image = read_png(&out).expect("partial image written");
     assert!(image.pixels().iter().flatten().any(|&c| c > 0.0));
+}
+
+#[test]
+fn the_bounce_view_is_a_documented_flag_and_renders() {
+    let help = candela(&["--help"]);
+    assert!(help.status.success());
+    let text = String::from_utf8_lossy(&help.stdout);
+    let at = text
+        .find("--bounce <K>")
+        .unwrap_or_else(|| panic!("--bounce missing from --help:\n{text}"));
+    // The help may wrap: compare with the whitespace collapsed.
+    let entry: Vec<&str> = text[at..].split_whitespace().take(16).collect();
+    assert!(
+        entry.join(" ").contains("after exactly K bounces"),
+        "{entry:?}"
+    );
+    let dir = scratch("bounce");
+    let out = dir.join("b1.png");
+    let run = candela(&[
+        "-s",
+        "1",
+        "-m",
+        "2",
+        "--bounce",
+        "1",
+        "-q",
+        "-f",
+        path(&out),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(read_png(&out).is_ok());
 }

@@ -171,7 +171,8 @@ impl PyFilm {
 
     /// Writes the image: `.png` (tone-mapped 8-bit sRGB, as the CLI) or
     /// `.exr` (linear float; plus a `samples` layer when `samples`, and the
-    /// albedo and normal layers denoisers read when `aovs`). The output
+    /// albedo and normal layers denoisers read, the depth and the cost
+    /// layers when `aovs`). The output
     /// settings (`exposure`, `tone`) may be given as keywords, as to
     /// `render`.
     #[pyo3(signature = (path, *, samples=false, aovs=false, **settings))]
@@ -190,6 +191,8 @@ impl PyFilm {
             tone: output.tone_map(),
             aovs,
             sample_counts: samples,
+            depth: aovs,
+            cost: aovs,
             rate_image: None,
         };
         py.detach(|| write_film(&path, &self.inner.film, &opts))

@@ -2,7 +2,7 @@
 //!
 //! The library renders a full-frame film with samples only in
 //! `RenderSettings::cell`; a part that travels between processes needs only
-//! that rectangle, so it is cropped here (at 116 bytes a pixel, cropping is
+//! that rectangle, so it is cropped here (at 144 bytes a pixel, cropping is
 //! what keeps a work unit's result small).
 
 use crate::stats::StatsRecord;

@@ -1,21 +1,22 @@
 //! A film's raw sums as bytes, so Dask (or any pickle user) can move them.
 //!
-//! Layout, little-endian: magic `CNDLFLM2`; u32 width, height, origin x,
+//! Layout, little-endian: magic `CNDLFLM3`; u32 width, height, origin x,
 //! origin y, full width, full height; 10 u64 statistics counters; f64 render
 //! and wall time; then per pixel, row-major, the sums of `PixelSums` in
 //! declaration order -- radiance (3), radiance squared (3), luminance,
-//! luminance squared, albedo (3), normal (3) as f64 -- and the sample count
-//! as u32. 116 bytes per pixel: a 64×64 cell is 464 KiB. Floats travel as
+//! luminance squared, albedo (3), normal (3), depth as f64; the depth
+//! count and the sample count as u32; nodes visited and primitive tests as
+//! u64. 144 bytes per pixel: a 64×64 cell is 576 KiB. Floats travel as
 //! their bits, so a film survives the trip exactly.
 
 use crate::stats::StatsRecord;
 use candela_render::film::{Film, PixelSums};
 use glam::DVec3;
 
-const MAGIC: &[u8; 8] = b"CNDLFLM2";
+const MAGIC: &[u8; 8] = b"CNDLFLM3";
 const HEADER: usize = 8 + 6 * 4 + 10 * 8 + 2 * 8;
 /// Bytes per pixel in the wire format.
-pub const PIXEL_BYTES: usize = 14 * 8 + 4;
+pub const PIXEL_BYTES: usize = 15 * 8 + 2 * 4 + 2 * 8;
 
 /// A film with where it sits in the full image and what it cost.
 #[derive(Clone, Debug, PartialEq)]
@@ -71,12 +72,15 @@ pub fn encode(f: &PlacedFilm) -> Vec<u8> {
     for p in &f.film.pixels {
         let (r, q, a, n) = (p.radiance, p.radiance_sq, p.albedo, p.normal);
         let sums = [
-            r.x, r.y, r.z, q.x, q.y, q.z, p.lum, p.lum_sq, a.x, a.y, a.z, n.x, n.y, n.z,
+            r.x, r.y, r.z, q.x, q.y, q.z, p.lum, p.lum_sq, a.x, a.y, a.z, n.x, n.y, n.z, p.depth,
         ];
         for v in sums {
             out.extend_from_slice(&v.to_le_bytes());
         }
+        out.extend_from_slice(&p.depth_count.to_le_bytes());
         out.extend_from_slice(&p.count.to_le_bytes());
+        out.extend_from_slice(&p.nodes.to_le_bytes());
+        out.extend_from_slice(&p.prim_tests.to_le_bytes());
     }
     out
 }
@@ -134,7 +138,11 @@ pub fn decode(bytes: &[u8]) -> Result<PlacedFilm, WireError> {
             lum_sq: r.f64(),
             albedo: DVec3::new(r.f64(), r.f64(), r.f64()),
             normal: DVec3::new(r.f64(), r.f64(), r.f64()),
+            depth: r.f64(),
+            depth_count: r.u32(),
             count: r.u32(),
+            nodes: r.u64(),
+            prim_tests: r.u64(),
         };
     }
     Ok(PlacedFilm {

@@ -182,6 +182,20 @@ pub enum Bsdf {
 }
 
 impl Bsdf {
+    /// The model's name, as the path inspector shows it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Bsdf::Diffuse { .. } => "diffuse",
+            Bsdf::Mirror { .. } => "mirror",
+            Bsdf::Glass { .. } => "glass",
+            Bsdf::Refraction { .. } => "refraction",
+            Bsdf::ThinGlass { .. } => "thin glass",
+            Bsdf::RoughGlass { .. } => "rough glass",
+            Bsdf::Plastic(_) => "plastic",
+            Bsdf::Microfacet { .. } => "rough conductor",
+        }
+    }
+
     /// The union of the flags of its lobes.
     pub fn flags(&self) -> BsdfFlags {
         match self {

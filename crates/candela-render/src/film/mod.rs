@@ -2,7 +2,9 @@
 //!
 //! Each pixel keeps the sums of its radiance samples and of their squares,
 //! the sums of their illuminance (luminance) and of its square, the sums of
-//! the first-hit albedo and shading normal (denoiser AOVs), and the sample
+//! the first-hit albedo and shading normal (denoiser AOVs), of the first-hit
+//! distance (depth) with the number of samples that hit, of the traversal
+//! work (BVH nodes visited, primitive tests: the cost AOV), and the sample
 //! count. Tiles, threads, cells, sample ranges and machines merge by adding
 //! these sums, and the adaptive sampler's confidence test
 //! ([`adaptive::converged`]) reads the same numbers (Tungsten's
@@ -16,7 +18,7 @@ mod sums;
 pub use adaptive::Adaptive;
 pub use output::{write_film, OutputError, OutputFormat, OutputOptions};
 pub use rect::PixelRect;
-pub use sums::{luminance, PixelSums, SampleValue};
+pub use sums::{luminance, CostMeasure, PixelSums, SampleValue};
 
 use candela_image::{GrayImage, RgbImage};
 use glam::Vec3;
@@ -113,6 +115,21 @@ impl Film {
         self.rgb(PixelSums::mean_normal)
     }
 
+    /// Mean distance along the camera rays to the first hit, per pixel, over
+    /// the samples whose camera ray hit something; +inf where none did
+    /// (nothing there, not "at the camera").
+    pub fn depth(&self) -> GrayImage {
+        self.gray(PixelSums::mean_depth)
+    }
+
+    /// Traversal work per sample of each pixel: BVH nodes visited and/or
+    /// primitive tests of all the rays of a sample (camera, bounce and
+    /// shadow rays), averaged over the pixel's samples. See
+    /// [`candela_image::heat_image`] to show it.
+    pub fn cost(&self, measure: CostMeasure) -> GrayImage {
+        self.gray(|p| p.mean_cost(measure))
+    }
+
     /// Standard error of each pixel's mean radiance, per channel.
     pub fn std_error(&self) -> RgbImage {
         self.rgb(PixelSums::std_error)
@@ -120,7 +137,11 @@ impl Film {
 
     /// Samples taken per pixel, as an image.
     pub fn sample_count_image(&self) -> GrayImage {
-        let values = self.pixels.iter().map(|p| p.count as f32).collect();
+        self.gray(|p| p.count as f32)
+    }
+
+    fn gray(&self, f: impl Fn(&PixelSums) -> f32) -> GrayImage {
+        let values = self.pixels.iter().map(f).collect();
         GrayImage::from_values(self.width as usize, self.height as usize, values)
             .expect("a film's pixel count matches its size")
     }

@@ -4,9 +4,9 @@
 //! sample-rate image is written beside the output. Every file is written
 //! atomically, so a failed write leaves no file.
 
-use super::Film;
+use super::{CostMeasure, Film};
 use candela_image::{
-    rate_image, write_exr, write_png, write_png_display, ExrLayers, ImageError, ToneMap,
+    rate_image, write_exr, write_png, write_png_display, ExrLayers, ImageError, LayerData, ToneMap,
 };
 use std::path::{Path, PathBuf};
 
@@ -43,6 +43,12 @@ pub struct OutputOptions {
     pub aovs: bool,
     /// EXR: a `samples` layer with each pixel's sample count.
     pub sample_counts: bool,
+    /// EXR: a `depth` layer, the mean first-hit distance ([`Film::depth`];
+    /// +inf where nothing was hit).
+    pub depth: bool,
+    /// EXR: the cost layers `cost.nodes` and `cost.prims`, BVH nodes
+    /// visited and primitive tests per sample ([`Film::cost`]).
+    pub cost: bool,
     /// Also write `<stem>_rate.png`, the CS184 sample-rate image, with this
     /// sample count shown as red (adaptive sampling).
     pub rate_image: Option<u32>,
@@ -83,10 +89,23 @@ pub fn write_film(
     match format {
         OutputFormat::Png => write_png(path, &film.resolve(), &opts.tone),
         OutputFormat::Exr => {
+            let mut extra = Vec::new();
+            if opts.depth {
+                extra.push(("depth".to_string(), LayerData::Gray(film.depth())));
+            }
+            if opts.cost {
+                for (name, measure) in [
+                    ("cost.nodes", CostMeasure::Nodes),
+                    ("cost.prims", CostMeasure::PrimTests),
+                ] {
+                    extra.push((name.to_string(), LayerData::Gray(film.cost(measure))));
+                }
+            }
             let layers = ExrLayers {
                 albedo: opts.aovs.then(|| film.albedo()),
                 normal: opts.aovs.then(|| film.normal()),
                 sample_count: opts.sample_counts.then(|| film.sample_count_image()),
+                extra,
                 ..ExrLayers::beauty(film.resolve())
             };
             write_exr(path, &layers)

@@ -38,6 +38,7 @@ fn aovs_average_and_invalid_samples_count_as_black() {
         radiance: Vec3::new(2.0, 2.0, 2.0),
         albedo: Vec3::new(0.5, 0.25, 1.0),
         normal: Vec3::Y,
+        ..SampleValue::default()
     };
     p.add(&s);
     p.add_invalid(&SampleValue {
@@ -48,6 +49,42 @@ fn aovs_average_and_invalid_samples_count_as_black() {
     assert_eq!(p.mean(), Vec3::ONE);
     assert_eq!(p.mean_albedo(), s.albedo);
     assert_eq!(p.mean_normal(), Vec3::Y);
+}
+
+#[test]
+fn depth_averages_over_hits_and_cost_over_all_samples() {
+    let work = |nodes, prims| candela_bvh::TraversalStats {
+        nodes_visited: nodes,
+        prims_tested: prims,
+    };
+    let mut p = PixelSums::default();
+    assert_eq!(p.mean_depth(), f32::INFINITY);
+    assert_eq!(p.mean_cost(CostMeasure::Total), 0.0);
+    let hit = |depth, cost| SampleValue {
+        depth,
+        cost,
+        ..SampleValue::default()
+    };
+    p.add(&hit(2.0, work(10, 4)));
+    p.add(&hit(f32::INFINITY, work(3, 0))); // escaped: no depth, but work
+    p.add_invalid(&hit(4.0, work(20, 8)));
+    assert_eq!((p.count, p.depth_count), (3, 2));
+    assert_eq!(p.mean_depth(), 3.0);
+    assert_eq!(p.mean_cost(CostMeasure::Nodes), 11.0);
+    assert_eq!(p.mean_cost(CostMeasure::PrimTests), 4.0);
+    assert_eq!(p.mean_cost(CostMeasure::Total), 15.0);
+    // Merging adds the sums: two copies have the same means.
+    let mut twice = p;
+    twice.merge(&p);
+    assert_eq!(
+        (twice.nodes, twice.prim_tests, twice.depth_count),
+        (66, 24, 4)
+    );
+    assert_eq!(twice.mean_depth(), 3.0);
+    let mut film = Film::new(2, 1);
+    film.pixels[0] = p;
+    assert_eq!(film.depth().values(), &[3.0, f32::INFINITY]);
+    assert_eq!(film.cost(CostMeasure::Total).values(), &[15.0, 0.0]);
 }
 
 #[test]

@@ -7,6 +7,7 @@
 //! [`bsdf_hit_weight`] is the matching MIS weight for the BSDF sample that
 //! finds an emitter on its own.
 
+use super::record::{HemisphereEvent, LightSampleEvent, PathRecorder};
 use super::ThreadContext;
 use crate::bsdf::Bsdf;
 use crate::geometry::{Frame, Ray};
@@ -73,13 +74,27 @@ pub fn unoccluded(
     !scene.occluded(&ray, &mut ctx.rays.traversal)
 }
 
+/// Sampler dimensions one [`estimate_direct`] call draws in `scene`: two per
+/// hemisphere ray, three per light sample (the light, a point on it), none
+/// for delta lights. A caller that skips the estimate skips these, so that
+/// the rest of the path keeps its random numbers.
+pub fn direct_dimensions(scene: &Scene, mode: LightingMode, light_samples: u32) -> u32 {
+    match mode {
+        LightingMode::Hemisphere => 2 * light_samples,
+        LightingMode::Light | LightingMode::Mis if scene.lights.has_sampled_lights() => {
+            3 * light_samples
+        }
+        LightingMode::Light | LightingMode::Mis => 0,
+    }
+}
+
 /// Direct radiance reflected toward `hit.wo`. Light sampling: `light_samples`
 /// samples of the non-delta lights (chosen by power) plus one sample of each
 /// delta light, each weighted for MIS when `mode` is [`LightingMode::Mis`].
 /// Hemisphere mode: `light_samples` uniform hemisphere rays (CS184's `-H`
-/// with `-l`).
+/// with `-l`). Each sample goes to `rec`.
 #[allow(clippy::too_many_arguments)]
-pub fn estimate_direct(
+pub fn estimate_direct<R: PathRecorder>(
     scene: &Scene,
     hit: &SurfaceHit,
     frame: &Frame,
@@ -88,24 +103,33 @@ pub fn estimate_direct(
     light_samples: u32,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
+    rec: &mut R,
 ) -> Vec3 {
     if mode == LightingMode::Hemisphere {
-        return estimate_hemisphere(scene, hit, frame, bsdf, light_samples, sampler, ctx);
+        return estimate_hemisphere(scene, hit, frame, bsdf, light_samples, sampler, ctx, rec);
     }
     let lights = &scene.lights;
     let wo = frame.to_local(hit.wo);
+    let vertex = Vertex {
+        scene,
+        hit,
+        frame,
+        bsdf,
+        wo,
+    };
     let mut total = Vec3::ZERO;
-    for light in lights.delta_lights() {
+    for (index, light) in lights.delta_lights() {
         // Delta lights take no random numbers, so the sampler's dimensions
         // stay aligned whatever the scene holds.
         if let Some(s) = light.sample_li(hit.p, Vec2::ZERO) {
-            total += sample_contribution(scene, hit, frame, bsdf, wo, s, None, ctx);
+            total += vertex.light_sample(index, s, None, 1.0, ctx, rec);
         }
     }
     if !lights.has_sampled_lights() || light_samples == 0 {
         return total;
     }
     let mut sum = Vec3::ZERO;
+    let scale = 1.0 / light_samples as f32;
     for _ in 0..light_samples {
         let u_choose = sampler.next_1d();
         let u = sampler.next_2d();
@@ -118,7 +142,7 @@ pub fn estimate_direct(
         if let Some(sample) = lights.sample_li(index, hit.p, u) {
             let mut s = sample;
             s.pdf *= pmf;
-            sum += sample_contribution(scene, hit, frame, bsdf, wo, s, mis, ctx);
+            sum += vertex.light_sample(index, s, mis, scale, ctx, rec);
         }
     }
     total + sum / light_samples as f32
@@ -128,7 +152,8 @@ pub fn estimate_direct(
 /// uniform directions over the hemisphere on the viewer's side, each adding
 /// the emission it finds (an emitter's front face, or the lights at
 /// infinity when it escapes) times `f · |cos| / pdf`.
-fn estimate_hemisphere(
+#[allow(clippy::too_many_arguments)]
+fn estimate_hemisphere<R: PathRecorder>(
     scene: &Scene,
     hit: &SurfaceHit,
     frame: &Frame,
@@ -136,11 +161,13 @@ fn estimate_hemisphere(
     samples: u32,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
+    rec: &mut R,
 ) -> Vec3 {
     if samples == 0 {
         return Vec3::ZERO;
     }
     let wo = frame.to_local(hit.wo);
+    let scale = 1.0 / samples as f32;
     let mut sum = Vec3::ZERO;
     for _ in 0..samples {
         let local = square_to_uniform_hemisphere(sampler.next_2d());
@@ -150,12 +177,24 @@ fn estimate_hemisphere(
         let wi_local = if wo.z < 0.0 { -local } else { local };
         let f = bsdf.f(wo, wi_local);
         let wi = frame.to_world(wi_local);
+        let mut event = HemisphereEvent {
+            wi,
+            pdf,
+            f,
+            traced: false,
+            hit: None,
+            radiance: Vec3::ZERO,
+            value: Vec3::ZERO,
+            scale,
+        };
         if f == Vec3::ZERO || wi.dot(hit.ng) <= 0.0 {
+            rec.hemisphere_ray(&event);
             continue;
         }
         let ray = Ray::new(hit.spawn_origin(wi), wi);
         ctx.rays.shadow += 1;
-        let le = match scene.intersect(&ray, &mut ctx.rays.traversal) {
+        let found = scene.intersect(&ray, &mut ctx.rays.traversal);
+        let le = match &found {
             Some(h) if h.front_face => scene.material(h.material).emission.unwrap_or(Vec3::ZERO),
             Some(_) => Vec3::ZERO,
             None => scene
@@ -164,46 +203,101 @@ fn estimate_hemisphere(
                 .map(|i| scene.lights.get(i).le(wi))
                 .sum(),
         };
-        sum += f * le * (wi_local.z.abs() / pdf);
+        let value = f * le * (wi_local.z.abs() / pdf);
+        sum += value;
+        event.traced = true;
+        event.hit = found.map(|h| h.p);
+        event.radiance = le;
+        event.value = value;
+        rec.hemisphere_ray(&event);
     }
     sum / samples as f32
 }
 
-/// `f · L · |cos| / pdf` for one light sample, times its MIS weight when
-/// `mis_count` (the number of light samples) is given, if unoccluded.
-#[allow(clippy::too_many_arguments)]
-fn sample_contribution(
-    scene: &Scene,
-    hit: &SurfaceHit,
-    frame: &Frame,
-    bsdf: &Bsdf,
+/// A shading point, as light samples see it.
+struct Vertex<'a> {
+    scene: &'a Scene,
+    hit: &'a SurfaceHit,
+    frame: &'a Frame,
+    bsdf: &'a Bsdf,
+    /// Toward the viewer, in the local frame.
     wo: Vec3,
-    s: LightSample,
-    mis_count: Option<f32>,
-    ctx: &mut ThreadContext,
-) -> Vec3 {
-    if s.pdf <= 0.0 || s.l == Vec3::ZERO {
-        return Vec3::ZERO;
+}
+
+impl Vertex<'_> {
+    /// `f · L · |cos| / pdf` for one sample `s` of light `index`, times its
+    /// MIS weight when `mis_count` (the number of light samples) is given,
+    /// if unoccluded; the sample goes to `rec` with its `scale`.
+    #[inline(always)]
+    fn light_sample<R: PathRecorder>(
+        &self,
+        index: u32,
+        s: LightSample,
+        mis_count: Option<f32>,
+        scale: f32,
+        ctx: &mut ThreadContext,
+        rec: &mut R,
+    ) -> Vec3 {
+        let mut event = LightSampleEvent {
+            light: index,
+            wi: s.wi,
+            distance: s.distance,
+            radiance: s.l,
+            pdf: s.pdf,
+            f: Vec3::ZERO,
+            bsdf_pdf: None,
+            mis_weight: 1.0,
+            visible: None,
+            value: Vec3::ZERO,
+            scale,
+        };
+        let value = self.contribution(&s, mis_count, ctx, &mut event);
+        event.value = value;
+        rec.light_sample(&event);
+        value
     }
-    // Light arriving from behind the geometric surface reaches this side
-    // only through a transmissive BSDF (no leaks through walls whose
-    // shading normals bend).
-    if s.wi.dot(hit.ng) <= 0.0 && !bsdf.flags().is_transmission() {
-        return Vec3::ZERO;
+
+    /// The value of [`Vertex::light_sample`], filling in `event` as it goes.
+    #[inline(always)]
+    fn contribution(
+        &self,
+        s: &LightSample,
+        mis_count: Option<f32>,
+        ctx: &mut ThreadContext,
+        event: &mut LightSampleEvent,
+    ) -> Vec3 {
+        let (hit, bsdf) = (self.hit, self.bsdf);
+        if s.pdf <= 0.0 || s.l == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        // Light arriving from behind the geometric surface reaches this side
+        // only through a transmissive BSDF (no leaks through walls whose
+        // shading normals bend).
+        if s.wi.dot(hit.ng) <= 0.0 && !bsdf.flags().is_transmission() {
+            return Vec3::ZERO;
+        }
+        let wi = self.frame.to_local(s.wi);
+        let f = bsdf.f(self.wo, wi);
+        event.f = f;
+        if f == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        let visible = unoccluded(self.scene, hit, s.wi, s.distance, ctx);
+        event.visible = Some(visible);
+        if !visible {
+            return Vec3::ZERO;
+        }
+        let weight = match mis_count {
+            Some(n) => {
+                let bsdf_pdf = bsdf.pdf(self.wo, wi);
+                event.bsdf_pdf = Some(bsdf_pdf);
+                power_heuristic(n, s.pdf, 1.0, bsdf_pdf)
+            }
+            None => 1.0,
+        };
+        event.mis_weight = weight;
+        f * s.l * wi.z.abs() * (weight / s.pdf)
     }
-    let wi = frame.to_local(s.wi);
-    let f = bsdf.f(wo, wi);
-    if f == Vec3::ZERO {
-        return Vec3::ZERO;
-    }
-    if !unoccluded(scene, hit, s.wi, s.distance, ctx) {
-        return Vec3::ZERO;
-    }
-    let weight = match mis_count {
-        Some(n) => power_heuristic(n, s.pdf, 1.0, bsdf.pdf(wo, wi)),
-        None => 1.0,
-    };
-    f * s.l * wi.z.abs() * (weight / s.pdf)
 }
 
 /// MIS weight of an emitter found by a BSDF sample of density `bsdf_pdf`

@@ -6,11 +6,14 @@
 //! hit's albedo and normal, the auxiliary images denoisers want.
 
 pub mod direct;
+pub mod inspect;
 mod normals;
 pub mod path;
+pub mod record;
 
 pub use direct::LightingMode;
 pub use path::PathSettings;
+pub use record::PathRecorder;
 
 use crate::film::SampleValue;
 use crate::geometry::Ray;
@@ -20,7 +23,8 @@ use crate::scene::Scene;
 pub use crate::settings::{Estimator, IntegratorSettings};
 use crate::shape::SurfaceHit;
 use crate::stats::RayCounts;
-use glam::Vec3;
+use candela_bvh::TraversalStats;
+use glam::{Vec2, Vec3};
 
 /// Per-thread mutable state of a render: statistics only, so that results
 /// never depend on which thread rendered what.
@@ -32,29 +36,66 @@ pub struct ThreadContext {
     pub path_segments: u64,
 }
 
-/// The denoiser AOVs of one camera sample, filled in by the integrator at
-/// the camera ray's first hit; zero if the ray escapes.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// The AOVs of one camera sample, filled in by the integrator at the camera
+/// ray's first hit; zero (depth +inf) if the ray escapes.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FirstHitAov {
     /// The BSDF's albedo ([`crate::bsdf::Bsdf::albedo`]); zero for a pure
     /// emitter, which has no BSDF.
     pub albedo: Vec3,
     /// The shading normal flipped toward the camera, in world space.
     pub normal: Vec3,
+    /// Distance along the camera ray (a unit direction) to the hit.
+    pub depth: f32,
+}
+
+impl Default for FirstHitAov {
+    fn default() -> Self {
+        Self {
+            albedo: Vec3::ZERO,
+            normal: Vec3::ZERO,
+            depth: f32::INFINITY,
+        }
+    }
 }
 
 impl FirstHitAov {
     /// Records the AOVs of the first hit.
     pub fn record(&mut self, hit: &SurfaceHit, material: &Material) {
         self.normal = hit.ns_facing();
+        self.depth = hit.t;
         self.albedo = material
             .bsdf_at(hit)
             .map_or(Vec3::ZERO, |bsdf| bsdf.albedo());
     }
 }
 
+/// Camera sample `index` of pixel `(x, y)`, exactly as the renderer takes
+/// it: the sampler is positioned at (pixel, index), the film and lens
+/// points are its first four dimensions, and the integrator draws the rest.
+/// Every step of the path goes to `rec` (`&mut ()` records nothing).
+pub fn pixel_sample<R: PathRecorder>(
+    settings: &IntegratorSettings,
+    scene: &Scene,
+    (x, y): (u32, u32),
+    index: u32,
+    sampler: &mut Sampler,
+    ctx: &mut ThreadContext,
+    rec: &mut R,
+) -> SampleValue {
+    sampler.start_pixel_sample(x, y, index);
+    let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+    let lens = sampler.next_2d();
+    let ray = scene.camera.generate_ray(film, lens);
+    ctx.rays.camera += 1;
+    rec.camera(film, &ray);
+    sample_recorded(settings, scene, &ray, sampler, ctx, rec)
+}
+
 /// One camera sample: radiance (or the colour the integrator shows) along
-/// `ray`, with the first hit's AOVs.
+/// `ray`, with the first hit's AOVs and the traversal work of all its rays
+/// (read off the thread's running counts, so counting per sample costs two
+/// subtractions).
 pub fn sample(
     settings: &IntegratorSettings,
     scene: &Scene,
@@ -62,10 +103,24 @@ pub fn sample(
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
 ) -> SampleValue {
+    sample_recorded(settings, scene, ray, sampler, ctx, &mut ())
+}
+
+/// [`sample`], telling `rec` every step of the path (the normals view has
+/// no path and records nothing).
+pub fn sample_recorded<R: PathRecorder>(
+    settings: &IntegratorSettings,
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    ctx: &mut ThreadContext,
+    rec: &mut R,
+) -> SampleValue {
+    let work_before = ctx.rays.traversal;
     let mut aov = FirstHitAov::default();
     let mut radiance = match settings.path_settings() {
         None => normals::normals(scene, ray, ctx, &mut aov),
-        Some(path) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov),
+        Some(path) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov, rec),
     };
     if let Some(clamp) = settings.clamp {
         let brightest = radiance.max_element();
@@ -73,10 +128,16 @@ pub fn sample(
             radiance *= clamp / brightest;
         }
     }
+    let work = ctx.rays.traversal;
     SampleValue {
         radiance,
         albedo: aov.albedo,
         normal: aov.normal,
+        depth: aov.depth,
+        cost: TraversalStats {
+            nodes_visited: work.nodes_visited - work_before.nodes_visited,
+            prims_tested: work.prims_tested - work_before.prims_tested,
+        },
     }
 }
 

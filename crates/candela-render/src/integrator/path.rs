@@ -14,9 +14,14 @@
 //! scattering events has "k bounces" — `k = 0` is an emitter seen directly,
 //! `k = 1` direct lighting. [`PathSettings::bounces`] selects which `k` are
 //! added to the image: `0..=m` normally, `m..=m` for CS184's `-o 0`, `0..=1`
-//! for the direct-only view and `2..=m` for the indirect-only view.
+//! for the direct-only view, `2..=m` for the indirect-only view and `k..=k`
+//! for `--bounce k`. A vertex whose light samples fall outside the range
+//! skips their sampler dimensions rather than drawing them, so every view
+//! traces the same paths as the full render: the views of disjoint ranges
+//! add up to it sample for sample.
 
-use super::direct::{bsdf_hit_weight, estimate_direct, LightingMode};
+use super::direct::{bsdf_hit_weight, direct_dimensions, estimate_direct, LightingMode};
+use super::record::{EmissionEvent, PathEnd, PathRecorder, ScatterEvent};
 use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::{Frame, Ray};
@@ -60,14 +65,16 @@ struct PrevVertex {
 }
 
 /// Radiance along the camera ray `ray`; the first hit's albedo and normal
-/// go to `aov`.
-pub fn path_radiance(
+/// go to `aov`, and every step to `rec` (`&mut ()` records nothing and
+/// costs nothing).
+pub fn path_radiance<R: PathRecorder>(
     scene: &Scene,
     camera_ray: &Ray,
     settings: &PathSettings,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
     aov: &mut FirstHitAov,
+    rec: &mut R,
 ) -> Vec3 {
     let max_depth = *settings.bounces.end();
     let mut l = Vec3::ZERO;
@@ -77,53 +84,60 @@ pub fn path_radiance(
     let mut ray = *camera_ray;
     let mut prev: Option<PrevVertex> = None;
     let mut depth = 0u32;
-    loop {
+    let end = loop {
         let Some(hit) = scene.intersect(&ray, &mut ctx.rays.traversal) else {
+            rec.escape(depth, &ray, beta);
             if settings.bounces.contains(&depth) {
-                l += beta * escaped_radiance(scene, &ray, prev, settings);
+                l += beta * escaped_radiance(scene, &ray, prev, settings, rec);
             }
-            break;
+            break PathEnd::Escaped;
         };
+        rec.vertex(scene, depth, &ray, &hit, beta);
         let material = scene.material(hit.material);
         if depth == 0 {
             aov.record(&hit, material);
         }
         if settings.bounces.contains(&depth) && hit.front_face {
             if let Some(le) = material.emission {
-                l += beta * le * emitter_weight(scene, &ray, &hit, prev, settings);
+                let mis_weight = emitter_weight(scene, &ray, &hit, prev, settings);
+                l += beta * le * mis_weight;
+                rec.emission(&EmissionEvent {
+                    light: scene.lights.light_of_prim(hit.prim),
+                    radiance: le,
+                    mis_weight,
+                    value: le * mis_weight,
+                });
             }
         }
         if depth >= max_depth {
-            break;
+            break PathEnd::MaxDepth;
         }
         let Some(bsdf) = material.bsdf_at(&hit) else {
-            break; // a pure emitter absorbs
+            break PathEnd::Absorbed; // a pure emitter absorbs
         };
         let frame = Frame::from_normal(hit.ns);
-        if !bsdf.flags().is_specular() && settings.bounces.contains(&(depth + 1)) {
+        if !bsdf.flags().is_specular() {
             l += beta
-                * estimate_direct(
-                    scene,
-                    &hit,
-                    &frame,
-                    &bsdf,
-                    settings.lighting,
-                    settings.light_samples,
-                    sampler,
-                    ctx,
+                * direct_at_vertex(
+                    scene, &hit, &frame, &bsdf, depth, settings, sampler, ctx, rec,
                 );
         }
         let Some(s) = sample_direction(&bsdf, &frame, &hit, sampler) else {
-            break;
+            break PathEnd::NoScatter;
         };
         let wi = frame.to_world(s.wi);
         // A direction on the wrong side of the true surface would leak
         // through it (shading normals bend, geometry does not).
         let transmits = s.flags.is_transmission();
         if (wi.dot(hit.ng) > 0.0) == transmits {
-            break;
+            break PathEnd::WrongSide;
         }
         beta *= s.f * s.wi.z.abs() / s.pdf;
+        rec.scatter(&ScatterEvent {
+            sample: &s,
+            wi,
+            beta,
+        });
         if transmits {
             eta_scale *= refraction_eta2(&bsdf, frame.to_local(hit.wo));
         }
@@ -139,14 +153,60 @@ pub fn path_radiance(
             if depth >= from {
                 let survive = (beta * eta_scale).max_element().min(1.0);
                 if survive <= 0.0 || sampler.next_1d() >= survive {
-                    break;
+                    rec.roulette(survive, false, beta);
+                    break PathEnd::Roulette;
                 }
                 beta /= survive;
+                rec.roulette(survive, true, beta);
             }
         }
-    }
+    };
+    rec.end(end, l);
     ctx.path_segments += depth as u64 + 1;
     l
+}
+
+/// The direct-lighting estimate at a non-specular vertex after `depth`
+/// bounces, if light after `depth + 1` bounces is in the rendered range;
+/// otherwise zero, with the estimate's sampler dimensions skipped so that
+/// the rest of the path draws what a full render draws (bounce views then
+/// add up to it sample for sample).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn direct_at_vertex<R: PathRecorder>(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    frame: &Frame,
+    bsdf: &Bsdf,
+    depth: u32,
+    settings: &PathSettings,
+    sampler: &mut Sampler,
+    ctx: &mut ThreadContext,
+    rec: &mut R,
+) -> Vec3 {
+    let dimensions = || direct_dimensions(scene, settings.lighting, settings.light_samples);
+    if !settings.bounces.contains(&(depth + 1)) {
+        sampler.skip(dimensions());
+        return Vec3::ZERO;
+    }
+    let first_dimension = sampler.dimension();
+    let direct = estimate_direct(
+        scene,
+        hit,
+        frame,
+        bsdf,
+        settings.lighting,
+        settings.light_samples,
+        sampler,
+        ctx,
+        rec,
+    );
+    debug_assert_eq!(
+        sampler.dimension() - first_dimension,
+        dimensions(),
+        "direct_dimensions must count what estimate_direct draws"
+    );
+    direct
 }
 
 /// The next direction, by the BSDF's own importance sampling (in every
@@ -212,11 +272,12 @@ fn emitter_weight(
 /// the path: full weight when only this path could find it (camera rays,
 /// specular bounces), none in the hemisphere and light-only modes (the
 /// vertex's direct estimate counted it), the power heuristic under MIS.
-fn escaped_radiance(
+fn escaped_radiance<R: PathRecorder>(
     scene: &Scene,
     ray: &Ray,
     prev: Option<PrevVertex>,
     settings: &PathSettings,
+    rec: &mut R,
 ) -> Vec3 {
     let mut l = Vec3::ZERO;
     for index in scene.lights.infinite_lights() {
@@ -237,6 +298,12 @@ fn escaped_radiance(
             },
         };
         l += le * weight;
+        rec.emission(&EmissionEvent {
+            light: Some(index),
+            radiance: le,
+            mis_weight: weight,
+            value: le * weight,
+        });
     }
     l
 }

@@ -98,9 +98,9 @@ impl LightSet {
         self.lights.is_empty()
     }
 
-    /// Delta lights (sampled once each).
-    pub fn delta_lights(&self) -> impl Iterator<Item = &Light> {
-        self.delta.iter().map(|&i| &self.lights[i as usize])
+    /// Delta lights (sampled once each), with their indices.
+    pub fn delta_lights(&self) -> impl Iterator<Item = (u32, &Light)> {
+        self.delta.iter().map(|&i| (i, &self.lights[i as usize]))
     }
 
     /// Indices of non-delta lights at infinity (seen by escaping rays).

@@ -8,10 +8,9 @@
 
 use super::RenderSettings;
 use crate::film::{PixelRect, PixelSums};
-use crate::integrator::{sample, ThreadContext};
+use crate::integrator::{pixel_sample, ThreadContext};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
-use glam::Vec2;
 use std::ops::Range;
 
 /// A tile's pixels between passes.
@@ -95,17 +94,14 @@ impl TileState {
                 if index >= range.end {
                     break;
                 }
-                sampler.start_pixel_sample(x, y, index);
-                let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
-                let lens = sampler.next_2d();
-                let ray = scene.camera.generate_ray(film, lens);
-                out.ctx.rays.camera += 1;
-                let s = sample(
+                let s = pixel_sample(
                     &settings.integrator,
                     scene,
-                    &ray,
+                    (x, y),
+                    index,
                     &mut sampler,
                     &mut out.ctx,
+                    &mut (),
                 );
                 if s.radiance.is_finite() {
                     sums.add(&s);

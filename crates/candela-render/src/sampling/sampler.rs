@@ -112,6 +112,13 @@ impl Sampler {
         }
     }
 
+    /// Skips `count` dimensions, as if they had been drawn: code that
+    /// leaves out a step (a bounce view skipping a vertex's light samples)
+    /// keeps every later decision on the dimensions a full render uses.
+    pub fn skip(&mut self, count: u32) {
+        self.take_dimensions(count);
+    }
+
     fn take_dimensions(&mut self, count: u32) -> u32 {
         let dim = self.dimension;
         self.dimension = self.dimension.wrapping_add(count);

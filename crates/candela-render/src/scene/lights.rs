@@ -1,7 +1,7 @@
 //! Gathers the scene's lights: the description's light sources plus every
 //! emissive triangle and sphere.
 
-use super::Geometry;
+use super::{Geometry, SceneNames};
 use crate::light::{
     AmbientLight, AreaLight, AreaShape, DirectionalLight, EnvironmentLight, EnvironmentMap, Light,
     LightSet, PointLight, SpotLight,
@@ -14,12 +14,14 @@ use std::sync::Arc;
 
 /// Builds the light set, with `environment` (if any) as one more light at
 /// infinity. Emissive primitives come first, in [`Geometry::prims`] order.
+/// Each light's name goes to `names.lights`, in light order.
 pub fn build_lights(
     desc: &SceneDesc,
     geometry: &Geometry,
     materials: &[Material],
     environment: Option<&Arc<EnvironmentMap>>,
     scene_radius: f32,
+    names: &mut SceneNames,
 ) -> LightSet {
     let mut lights = Vec::new();
     let mut prim_light = Vec::new();
@@ -32,8 +34,10 @@ pub fn build_lights(
         };
         prim_light.push((prim, lights.len() as u32));
         lights.push(Light::Area(AreaLight { shape, radiance }));
+        names.lights.push(format!("emitting {}", names.shape(prim)));
     }
     for light in &desc.lights {
+        names.lights.push(light.name.clone());
         lights.push(match light.kind {
             LightKind::Point {
                 position,
@@ -84,6 +88,7 @@ pub fn build_lights(
     }
     if let Some(map) = environment {
         lights.push(Light::Environment(EnvironmentLight { map: map.clone() }));
+        names.lights.push("environment map".into());
     }
     LightSet::new(lights, &prim_light, scene_radius)
 }

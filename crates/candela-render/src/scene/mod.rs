@@ -7,8 +7,10 @@
 
 mod geometry;
 mod lights;
+mod names;
 
 pub use geometry::{Geometry, GeometryError, SphereData, TriangleData};
+pub use names::SceneNames;
 
 use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
@@ -97,6 +99,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Light sources, including emissive primitives.
     pub lights: LightSet,
+    /// The description's names of materials, lights and shapes.
+    pub names: SceneNames,
     /// Things the description asks for that this renderer does not do,
     /// each named once.
     pub unsupported: Vec<String>,
@@ -113,6 +117,7 @@ impl Scene {
     pub fn build(desc: &SceneDesc, opts: &SceneOptions) -> Result<Scene, SceneError> {
         let camera = Scene::camera_for(desc, opts)?;
         let geometry = Geometry::from_desc(desc)?;
+        let mut names = SceneNames::from_desc(desc);
         let mut unsupported: Vec<String> = Vec::new();
         let mut textures = TextureCache::new();
         let mut materials: Vec<Material> = desc
@@ -131,6 +136,7 @@ impl Scene {
         if materials.is_empty() {
             let grey = candela_scene::MaterialDesc::default_grey();
             materials.push(Material::from_desc(&grey, &mut textures).0);
+            names.materials.push(grey.name);
         }
         let mut warnings = textures.into_problems();
         warnings.extend(unplaced_meshes(desc));
@@ -149,6 +155,7 @@ impl Scene {
             &materials,
             environment.as_ref(),
             scene_radius,
+            &mut names,
         );
         let start = Instant::now();
         let sphere_shapes: Vec<_> = geometry
@@ -168,6 +175,7 @@ impl Scene {
             geometry,
             materials,
             lights,
+            names,
             unsupported,
             warnings,
             accel,

@@ -59,6 +59,15 @@ pub struct IntegratorSettings {
         default_value_t = IntegratorSettings::default().accumulate))]
     pub accumulate: bool,
 
+    /// Only the light that reaches the camera after exactly K bounces: 0
+    /// emitters seen directly, 1 direct lighting at the first hit, 2 light
+    /// after one indirect bounce, ... (with MIS, both strategies' shares of
+    /// that path length). At most the maximum depth; path tracing only.
+    /// The images of K = 0..=max_depth add up to the full render of the same
+    /// seed, sample for sample (without `--clamp`, which is not additive).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "K"))]
+    pub bounce: Option<u32>,
+
     /// Russian roulette on the path throughput from the third bounce on
     /// (unbiased; `--no-roulette` is `--roulette false`).
     #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", action = clap::ArgAction::Set,
@@ -81,6 +90,7 @@ impl Default for IntegratorSettings {
             max_depth: 5,
             light_samples: 1,
             accumulate: true,
+            bounce: None,
             roulette: true,
             clamp: None,
         }
@@ -100,6 +110,9 @@ impl IntegratorSettings {
     /// Bounce counts whose light reaches the image.
     pub fn bounces(&self) -> RangeInclusive<u32> {
         let m = self.max_depth;
+        if let Some(k) = self.bounce {
+            return k..=k;
+        }
         match self.estimator {
             Estimator::Direct => 0..=m.min(1),
             Estimator::Indirect => 2..=m,
@@ -119,6 +132,32 @@ impl IntegratorSettings {
     }
 
     pub(super) fn validate(&self) -> Result<(), SettingsError> {
+        if let Some(k) = self.bounce {
+            check(
+                k <= self.max_depth,
+                "bounce",
+                "--bounce",
+                k,
+                format_args!("at most the maximum depth (-m {})", self.max_depth),
+            )?;
+            // The CS184 views choose their own bounce counts.
+            let view = match (self.estimator, self.accumulate) {
+                (Estimator::Path, true) => None,
+                (Estimator::Path, false) => Some("-o 0"),
+                (Estimator::Normals, _) => Some("--integrator normals"),
+                (Estimator::Direct, _) => Some("--integrator direct"),
+                (Estimator::Indirect, _) => Some("--integrator indirect"),
+            };
+            if let Some(view) = view {
+                check(
+                    false,
+                    "bounce",
+                    "--bounce",
+                    k,
+                    format_args!("only with the path integrator adding every bounce, not {view}"),
+                )?;
+            }
+        }
         if let Some(c) = self.clamp {
             let ok = c.is_finite() && c > 0.0;
             check(ok, "clamp", "--clamp", c, "a radiance > 0")?;

@@ -124,9 +124,10 @@ fn hints_json(h: &RenderHints) -> Map<String, Value> {
 
 /// Memory a render of `width` × `height` pixels claims beyond the scene:
 /// the film's sums twice (the tiles' working copies and the merged film)
-/// and the images written from it (beauty, albedo, normal, counts).
+/// and the images written from it (beauty, albedo, normal, counts, depth,
+/// cost).
 pub fn film_bytes(width: u32, height: u32) -> u64 {
-    let per_pixel = 2 * std::mem::size_of::<PixelSums>() as u64 + 4 * 12 + 8;
+    let per_pixel = 2 * std::mem::size_of::<PixelSums>() as u64 + 4 * 12 + 8 + 3 * 4;
     width as u64 * height as u64 * per_pixel
 }
 

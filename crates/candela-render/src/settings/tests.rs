@@ -161,6 +161,8 @@ fn cs184_views_map_to_bounce_ranges() {
         i(json!({"max_depth": 0, "integrator": "direct"})).bounces(),
         0..=0
     );
+    assert_eq!(i(json!({"max_depth": 4, "bounce": 2})).bounces(), 2..=2);
+    assert_eq!(i(json!({"bounce": 0})).bounces(), 0..=0);
     assert!(i(json!({"integrator": "normals"}))
         .path_settings()
         .is_none());
@@ -215,5 +217,30 @@ fn a_time_budget_is_not_capped_by_a_suggested_sample_count() {
             .sampling
             .spp(),
         64
+    );
+}
+
+#[test]
+fn a_bounce_beyond_the_depth_or_with_a_cs184_view_is_refused() {
+    assert_eq!(
+        refused(json!({"max_depth": 3, "bounce": 4})),
+        "bounce (--bounce) 4: at most the maximum depth (-m 3)"
+    );
+    for (view, name) in [
+        (json!({"integrator": "direct"}), "--integrator direct"),
+        (json!({"integrator": "indirect"}), "--integrator indirect"),
+        (json!({"integrator": "normals"}), "--integrator normals"),
+        (json!({"accumulate": false}), "-o 0"),
+    ] {
+        let mut v = changes(view);
+        v.insert("bounce".into(), json!(1));
+        assert_eq!(
+            refused(Value::Object(v)),
+            format!("bounce (--bounce) 1: only with the path integrator adding every bounce, not {name}")
+        );
+    }
+    assert_eq!(
+        refused(json!({"bounce": -1})).split(':').next(),
+        Some("setting `bounce` = -1")
     );
 }

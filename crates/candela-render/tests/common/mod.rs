@@ -244,3 +244,123 @@ pub fn file_camera_batches(
         })
         .collect()
 }
+
+/// A small open room for the bounce-view and path-inspector tests, with
+/// every kind of light path the integrator handles: a diffuse floor and back
+/// wall, a glass ball (specular reflection and refraction), a diffuse ball,
+/// an emitting quad overhead (area light found by both MIS strategies), a
+/// point light (delta) and a dim sky (a light at infinity, seen by rays that
+/// escape over the wall). The camera looks down -Z from the origin.
+pub fn glass_room() -> SceneDesc {
+    let mut desc = SceneDesc {
+        source: "glass room".into(),
+        cameras: vec![camera_at(Vec3::new(0.0, 0.0, 0.5))],
+        materials: vec![
+            material(
+                "floor",
+                BsdfDesc::Diffuse {
+                    albedo: Vec3::new(0.7, 0.6, 0.5),
+                },
+                None,
+            ),
+            material(
+                "glass",
+                BsdfDesc::Glass {
+                    reflectance: Vec3::ONE,
+                    transmittance: Vec3::ONE,
+                    roughness: 0.0,
+                    ior: 1.5,
+                },
+                None,
+            ),
+            material(
+                "lamp",
+                BsdfDesc::Diffuse { albedo: Vec3::ZERO },
+                Some(Vec3::splat(6.0)),
+            ),
+            material(
+                "clay",
+                BsdfDesc::Diffuse {
+                    albedo: Vec3::new(0.3, 0.5, 0.8),
+                },
+                None,
+            ),
+        ],
+        spheres: vec![
+            SphereDesc {
+                name: "glass ball".into(),
+                center: Vec3::new(0.45, -0.55, -2.3),
+                radius: 0.45,
+                material: 1,
+                loc: SourceLoc::default(),
+            },
+            SphereDesc {
+                name: "clay ball".into(),
+                center: Vec3::new(-0.6, -0.65, -2.8),
+                radius: 0.35,
+                material: 3,
+                loc: SourceLoc::default(),
+            },
+        ],
+        lights: vec![
+            LightDesc {
+                name: "bulb".into(),
+                kind: LightKind::Point {
+                    position: Vec3::new(-1.0, 0.8, -1.5),
+                    intensity: Vec3::splat(1.5),
+                },
+                loc: SourceLoc::default(),
+            },
+            LightDesc {
+                name: "sky".into(),
+                kind: LightKind::Ambient {
+                    radiance: Vec3::new(0.2, 0.25, 0.35),
+                },
+                loc: SourceLoc::default(),
+            },
+        ],
+        ..Default::default()
+    };
+    // Floor (y = -1, facing up) and back wall (z = -4, facing +z, up to
+    // y = 0.3 so that rays over it escape to the sky).
+    let quad = |name: &str, corners: [Vec3; 4], material: usize| MeshDesc {
+        name: name.into(),
+        positions: corners.to_vec(),
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        material,
+        ..Default::default()
+    };
+    let (x0, x1) = (-2.0, 2.0);
+    desc.add_mesh(quad(
+        "floor",
+        [
+            Vec3::new(x0, -1.0, 0.5),
+            Vec3::new(x1, -1.0, 0.5),
+            Vec3::new(x1, -1.0, -4.0),
+            Vec3::new(x0, -1.0, -4.0),
+        ],
+        0,
+    ));
+    desc.add_mesh(quad(
+        "wall",
+        [
+            Vec3::new(x0, -1.0, -4.0),
+            Vec3::new(x1, -1.0, -4.0),
+            Vec3::new(x1, 0.3, -4.0),
+            Vec3::new(x0, 0.3, -4.0),
+        ],
+        0,
+    ));
+    // The lamp faces down (-y).
+    desc.add_mesh(quad(
+        "lamp",
+        [
+            Vec3::new(-0.4, 1.2, -2.8),
+            Vec3::new(0.4, 1.2, -2.8),
+            Vec3::new(0.4, 1.2, -2.0),
+            Vec3::new(-0.4, 1.2, -2.0),
+        ],
+        2,
+    ));
+    desc
+}
