@@ -2,11 +2,11 @@
 //! browser (crate `candela-studio`). Binds 127.0.0.1 on a free port unless
 //! told otherwise, prints the URL with its token and opens the browser.
 
+use crate::args::{explicit_settings, Cs184Flags};
 use crate::render_cmd::{load_scene, UsageError};
 use anyhow::{Context, Result};
-use candela_studio::{Studio, StudioOptions};
-use crate::args::{explicit_settings, Cs184Flags};
 use candela_render::settings::Settings;
+use candela_studio::{Studio, StudioOptions};
 use clap::{ArgMatches, Args};
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::PathBuf;

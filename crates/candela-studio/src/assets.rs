@@ -23,6 +23,7 @@ pub const ASSETS: &[Asset] = &[
     js("orbit.js", include_str!("../web/orbit.js")),
     js("panel.js", include_str!("../web/panel.js")),
     js("bvh.js", include_str!("../web/bvh.js")),
+    js("inspect.js", include_str!("../web/inspect.js")),
     js("app.js", include_str!("../web/app.js")),
     Asset {
         path: "style.css",

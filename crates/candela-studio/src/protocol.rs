@@ -5,6 +5,7 @@
 //! [`frame_message`]: a little-endian `u32` header length, the header
 //! ([`FrameHeader`] as JSON), then a PNG.
 
+use candela_render::integrator::inspect::PathRecord;
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
@@ -31,11 +32,26 @@ pub enum Request {
         /// The layer to show.
         layer: Layer,
     },
+    /// Trace the first `samples` samples of pixel (`x`, `y`) of the last
+    /// render with full records (the path inspector).
+    Inspect {
+        /// Column, from the left.
+        x: u32,
+        /// Row, from the top.
+        y: u32,
+        /// How many samples, from index 0.
+        #[serde(default = "default_inspected")]
+        samples: u32,
+    },
     /// Write the last film into the output folder.
     Save {
         /// `png` (tone-mapped beauty) or `exr` (linear, with layers).
         format: SaveFormat,
     },
+}
+
+fn default_inspected() -> u32 {
+    4
 }
 
 /// The film's layers the page can show.
@@ -53,6 +69,12 @@ pub enum Layer {
     Samples,
     /// Standard error of each pixel's mean, tone-mapped like the beauty.
     StdError,
+    /// Mean distance to the first hit, grey (near is bright; black where
+    /// nothing was hit).
+    Depth,
+    /// Traversal work per sample (BVH nodes visited plus primitive tests)
+    /// as a heat map up to its 99th percentile.
+    Cost,
 }
 
 /// File formats of [`Request::Save`].
@@ -88,6 +110,17 @@ pub enum Reply {
     Saved {
         /// The paths written.
         files: Vec<String>,
+    },
+    /// The traced paths of [`Request::Inspect`].
+    Paths {
+        /// The pixel.
+        pixel: [u32; 2],
+        /// One record per sample, from index 0.
+        paths: Vec<PathRecord>,
+        /// The pixel's mean radiance in the film shown (over all its samples).
+        film_mean: [f64; 3],
+        /// The pixel's sample count in that film.
+        film_samples: u32,
     },
 }
 

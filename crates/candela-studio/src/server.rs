@@ -22,10 +22,10 @@ use axum::routing::get;
 use axum::{Json, Router};
 use candela_render::camera::{Camera, CameraView};
 use candela_render::render::Cancel;
-use glam::Vec3;
 use candela_render::scene::{Geometry, Scene};
 use candela_render::settings::Settings;
 use candela_scene::Loaded;
+use glam::Vec3;
 use serde::Deserialize;
 use serde_json::{json, Map, Value};
 use std::net::SocketAddr;
@@ -271,6 +271,7 @@ async fn session(mut socket: WebSocket, s: Shared_) {
                     Ok(Request::Cancel) => { current.cancel(); continue; }
                     Ok(Request::Layer { layer }) => Job::Layer(layer),
                     Ok(Request::Save { format }) => Job::Save(format),
+                    Ok(Request::Inspect { x, y, samples }) => Job::Inspect { pixel: (x, y), samples },
                     Err(message) => {
                         let text = Reply::error(message).to_text();
                         if socket.send(Message::Text(text.into())).await.is_err() { break; }

@@ -20,8 +20,11 @@
 
 use crate::command_line::command_line;
 use crate::protocol::{frame_message, FrameHeader, Layer, Reply, SaveFormat};
-use candela_image::{quantize_u8, rate_image, RgbImage, ToneCurve, ToneMap};
-use candela_render::film::{write_film, Film, OutputOptions};
+use candela_image::{
+    finite_percentile, heat_image, quantize_u8, rate_image, RgbImage, ToneCurve, ToneMap,
+};
+use candela_render::film::{write_film, CostMeasure, Film, OutputOptions};
+use candela_render::integrator::inspect::trace_paths;
 use candela_render::render::{render_with, Cancel, RenderControl, RenderSettings, StopReason};
 use candela_render::scene::Scene;
 use candela_render::settings::Settings;
@@ -53,6 +56,13 @@ pub enum Job {
     },
     /// Show another layer of the last film.
     Layer(Layer),
+    /// Trace samples `0..samples` of pixel (x, y) of the last render.
+    Inspect {
+        /// The pixel.
+        pixel: (u32, u32),
+        /// How many samples.
+        samples: u32,
+    },
     /// Write the last film.
     Save(SaveFormat),
 }
@@ -159,6 +169,10 @@ impl Worker {
                 }
                 None => self.reply(Reply::error("no image yet")),
             },
+            Job::Inspect { pixel, samples } => {
+                let reply = self.inspect(pixel, samples).unwrap_or_else(Reply::error);
+                self.reply(reply);
+            }
             Job::Save(format) => {
                 let reply = self.save(format).unwrap_or_else(Reply::error);
                 self.reply(reply);
@@ -178,14 +192,12 @@ impl Worker {
         cancel: &Cancel,
         received: Instant,
     ) -> Result<(), String> {
-        let settings =
-            Settings::resolve(&self.source.loaded.hints, changes).map_err(|e| e.to_string())?;
-        let command = command_line(
-            self.source.path.as_deref(),
-            &settings,
-            changes,
-            "candela.png",
-        );
+        let mut changes_all = self.source.base.clone();
+        changes_all.extend(changes.iter().map(|(k, v)| (k.clone(), v.clone())));
+        let settings = Settings::resolve(&self.source.loaded.hints, &changes_all)
+            .map_err(|e| e.to_string())?;
+        let path = self.source.path.as_deref();
+        let command = command_line(path, &settings, &changes_all, "candela.png");
         let base = settings.render_settings();
         let control = RenderControl {
             cancel: Some(cancel.clone()),
@@ -255,6 +267,35 @@ impl Worker {
         Ok(())
     }
 
+    /// The path inspector: the last render's samples of one pixel, traced
+    /// by the renderer's own sample function with a recorder.
+    fn inspect(&mut self, pixel: (u32, u32), samples: u32) -> Result<Reply, String> {
+        let last = self.last.as_ref().ok_or("no image to inspect yet")?;
+        let settings = last.settings.clone();
+        let (w, h) = (last.film.width, last.film.height);
+        if pixel.0 >= w || pixel.1 >= h {
+            return Err(format!(
+                "pixel ({}, {}) lies outside the {w}x{h} image",
+                pixel.0, pixel.1
+            ));
+        }
+        let sums = *last.film.pixel(pixel.0, pixel.1);
+        let film_mean = if sums.count > 0 {
+            (sums.radiance / sums.count as f64).to_array()
+        } else {
+            [0.0; 3]
+        };
+        let scene = scene_for(&mut self.scene, &self.source, &settings)?;
+        let paths = trace_paths(scene, &settings.render_settings(), pixel, 0..samples)
+            .map_err(|e| e.to_string())?;
+        Ok(Reply::Paths {
+            pixel: [pixel.0, pixel.1],
+            paths,
+            film_mean,
+            film_samples: sums.count,
+        })
+    }
+
     fn save(&mut self, format: SaveFormat) -> Result<Reply, String> {
         let last = self.last.as_ref().ok_or("no image to save yet")?;
         self.saved += 1;
@@ -270,6 +311,8 @@ impl Worker {
             tone: last.settings.output.tone_map(),
             aovs: true,
             sample_counts: true,
+            depth: true,
+            cost: true,
             rate_image: adaptive.then_some(last.header.target_spp),
         };
         let written = write_film(&path, &last.film, &opts).map_err(|e| e.to_string())?;
@@ -384,6 +427,34 @@ pub fn encode(film: &Film, settings: &Settings, header: &FrameHeader) -> Outgoin
     let rgb = match header.layer {
         Layer::Beauty => settings.output.tone_map().to_rgb8(&film.resolve()),
         Layer::StdError => settings.output.tone_map().to_rgb8(&film.std_error()),
+        Layer::Depth => {
+            let depth = film.depth();
+            let far = finite_percentile(depth.values(), 0.99)
+                .unwrap_or(1.0)
+                .max(1e-6);
+            depth
+                .values()
+                .iter()
+                .flat_map(|&d| {
+                    let v = if d.is_finite() {
+                        quantize_u8(1.0 - (d / far).min(1.0) * 0.9)
+                    } else {
+                        0
+                    };
+                    [v, v, v]
+                })
+                .collect()
+        }
+        Layer::Cost => {
+            let cost = film.cost(CostMeasure::Total);
+            let most = finite_percentile(cost.values(), 0.99)
+                .unwrap_or(1.0)
+                .max(1.0);
+            match heat_image(&cost, most) {
+                Ok(image) => display(&image),
+                Err(e) => return Outgoing::Text(Reply::error(e.to_string()).to_text()),
+            }
+        }
         Layer::Albedo => srgb.to_rgb8(&film.albedo()),
         Layer::Normal => {
             let mut n = film.normal();

@@ -45,16 +45,33 @@ async fn get(addr: SocketAddr, path: &str) -> (u16, String) {
 #[tokio::test]
 async fn every_route_needs_the_token() {
     let addr = start().await;
-    for path in ["/", "/static/app.js", "/api/scene", "/api/mesh", "/api/settings", "/api/bvh", "/ws"] {
+    for path in [
+        "/",
+        "/static/app.js",
+        "/api/scene",
+        "/api/mesh",
+        "/api/settings",
+        "/api/bvh",
+        "/ws",
+    ] {
         assert_eq!(get(addr, path).await.0, 403, "{path} without a token");
         let wrong = format!("{path}?token=0123456789abcdef0123456789abcdee");
         assert_eq!(get(addr, &wrong).await.0, 403, "{path} with a wrong token");
     }
     let (status, page) = get(addr, &format!("/?token={TOKEN}")).await;
     assert_eq!(status, 200);
-    assert!(page.contains(&format!("app.js?token={TOKEN}")), "the page's scripts carry the token");
-    assert_eq!(get(addr, &format!("/static/app.js?token={TOKEN}")).await.0, 200);
-    assert_eq!(get(addr, &format!("/static/nope.js?token={TOKEN}")).await.0, 404);
+    assert!(
+        page.contains(&format!("app.js?token={TOKEN}")),
+        "the page's scripts carry the token"
+    );
+    assert_eq!(
+        get(addr, &format!("/static/app.js?token={TOKEN}")).await.0,
+        200
+    );
+    assert_eq!(
+        get(addr, &format!("/static/nope.js?token={TOKEN}")).await.0,
+        404
+    );
     // The WebSocket upgrade itself is refused without the token.
     let url = format!("ws://{addr}/ws");
     match tokio_tungstenite::connect_async(url).await {
@@ -97,9 +114,8 @@ async fn the_settings_form_round_trips() {
     assert_eq!(Settings::resolve(&hints, &values).unwrap(), scene_settings);
 }
 
-type Socket = tokio_tungstenite::WebSocketStream<
-    tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>,
->;
+type Socket =
+    tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>>;
 
 async fn connect(addr: SocketAddr) -> Socket {
     let url = format!("ws://{addr}/ws?token={TOKEN}");
@@ -129,7 +145,9 @@ async fn bad_requests_get_error_replies_and_the_session_goes_on() {
     let addr = start().await;
     let mut ws = connect(addr).await;
     assert!(error_reply(&mut ws, "{").await.starts_with("bad request:"));
-    assert!(error_reply(&mut ws, r#"{"type":"teleport"}"#).await.starts_with("bad request:"));
+    assert!(error_reply(&mut ws, r#"{"type":"teleport"}"#)
+        .await
+        .starts_with("bad request:"));
     let render = |settings: Value| json!({"type": "render", "settings": settings}).to_string();
     let m = error_reply(&mut ws, &render(json!({"spp": 1e12}))).await;
     assert!(m.contains("spp"), "{m}");
@@ -137,9 +155,17 @@ async fn bad_requests_get_error_replies_and_the_session_goes_on() {
     assert!(m.contains("spp (-s) 0"), "{m}");
     let m = error_reply(&mut ws, &render(json!({"cell": [790, 590, 100, 100]}))).await;
     assert!(m.contains("cell (-p)"), "{m}");
-    let m = error_reply(&mut ws, &render(json!({"width": 4000000, "height": 4000000}))).await;
+    let m = error_reply(
+        &mut ws,
+        &render(json!({"width": 4000000, "height": 4000000})),
+    )
+    .await;
     assert!(m.contains("memory"), "{m}");
-    let m = error_reply(&mut ws, &render(json!({"eye": [0, 0, 0], "look_at": [0, 0, 0]}))).await;
+    let m = error_reply(
+        &mut ws,
+        &render(json!({"eye": [0, 0, 0], "look_at": [0, 0, 0]})),
+    )
+    .await;
     assert!(m.contains("eye"), "{m}");
     let m = error_reply(&mut ws, &render(json!({"warp": 9}))).await;
     assert!(m.contains("unknown setting `warp`"), "{m}");
@@ -157,7 +183,13 @@ async fn bad_requests_get_error_replies_and_the_session_goes_on() {
         let header: Value = serde_json::from_slice(&bytes[4..4 + n]).unwrap();
         let png = png::Decoder::new(std::io::Cursor::new(bytes[4 + n..].to_vec()));
         let info = png.read_info().unwrap().info().clone();
-        assert_eq!((info.width, info.height), (header["width"].as_u64().unwrap() as u32, header["height"].as_u64().unwrap() as u32));
+        assert_eq!(
+            (info.width, info.height),
+            (
+                header["width"].as_u64().unwrap() as u32,
+                header["height"].as_u64().unwrap() as u32
+            )
+        );
         if header["coarse"] == true {
             assert!(spp_seen.is_empty(), "the coarse frame comes first");
         } else {

@@ -18,13 +18,16 @@ async function main() {
   View3D.setMesh(positions);
   const radius = sceneRadius(positions);
   const up = Math.abs(scene.view.up[1]) > 0.1 ? [0, 1, 0] : scene.view.up;
-  let mode = "render", layer = "beauty", layerIntegrator = null, cell = null, job = 0;
+  // layerSettings: the settings a layer needs (direct/indirect only, bounce k).
+  let mode = "render", layer = "beauty", layerSettings = {}, cell = null, job = 0;
   const redraw = () => View3D.draw(Orbit.camera(), radius, { dim: mode === "bvh" });
-  const showImage = (on) => ($("image").style.visibility = on && mode !== "bvh" ? "visible" : "hidden");
+  const showImage = (on) => {
+    $("image").style.visibility = on && mode !== "bvh" ? "visible" : "hidden";
+    $("image").style.opacity = mode === "inspect" ? 0.5 : 1;
+  };
 
   const render = () => {
-    const settings = { ...Panel.changes, ...Orbit.settings() };
-    if (layerIntegrator) settings.integrator = layerIntegrator;
+    const settings = { ...Panel.changes, ...Orbit.settings(), ...layerSettings };
     if (cell) settings.cell = cell;
     job += 1;
     studio.job = job;
@@ -45,6 +48,11 @@ async function main() {
       $("message").className = "";
       $("message").textContent = msg.message;
       Panel.showError(msg.message);
+    } else if (msg.type === "paths") {
+      studio.paths = msg;
+      View3D.setLines(Inspect.lines(msg.paths, radius));
+      $("inspect-table").innerHTML = Inspect.table(msg);
+      redraw();
     } else if (msg.type === "saved") {
       studio.saved.push(...msg.files);
       $("message").className = "ok";
@@ -77,10 +85,12 @@ async function main() {
     mode = m;
     $("mode").value = m;
     $("bvh-panel").hidden = m !== "bvh";
-    Orbit.enabled = m !== "cell";
-    $("overlay").style.cursor = m === "cell" ? "crosshair" : "grab";
+    $("inspect-panel").hidden = m !== "inspect";
+    Orbit.enabled = m !== "cell" && m !== "inspect";
+    $("overlay").style.cursor = m === "cell" || m === "inspect" ? "crosshair" : "grab";
+    View3D.setLines([]);
+    View3D.setHighlight(null);
     if (m === "bvh") await Bvh.show(0, scene, positions);
-    else { View3D.setLines([]); View3D.setHighlight(null); }
     if (m !== "cell") { cell = null; clearOverlay(); }
     redraw();
     showImage(true);
@@ -92,17 +102,35 @@ async function main() {
   $("bvh-left").onclick = () => goNode(Bvh.child(0));
   $("bvh-right").onclick = () => goNode(Bvh.child(1));
   $("bvh-up").onclick = () => goNode(Bvh.parent());
-  $("layer").addEventListener("change", (e) => {
-    const v = e.target.value;
-    const integrator = v === "direct" || v === "indirect" ? v : null;
-    if (integrator || layerIntegrator) { layerIntegrator = integrator; layer = "beauty"; render(); }
-    else { layer = v; Net.send({ type: "layer", layer }); }
-    if (!integrator) layer = v;
+  const setLayer = () => {
+    const v = $("layer").value;
+    $("bounce-label").hidden = v !== "bounce";
+    const needs = v === "direct" || v === "indirect" ? { integrator: v }
+      : v === "bounce" ? { bounce: Number($("bounce-k").value) } : {};
+    const image = Object.keys(needs).length ? "beauty" : v;
+    const rerender = JSON.stringify(needs) !== JSON.stringify(layerSettings);
+    layerSettings = needs;
+    layer = image;
+    if (rerender) render(); else Net.send({ type: "layer", layer });
+  };
+  $("layer").addEventListener("change", setLayer);
+  $("bounce-k").addEventListener("change", setLayer);
+  studio.setLayer = (v, k) => { $("layer").value = v; if (k !== undefined) $("bounce-k").value = k; setLayer(); };
+  const inspect = (x, y) => {
+    const samples = Number($("inspect-n").value) || 4;
+    Net.send({ type: "inspect", x, y, samples });
+  };
+  studio.inspect = inspect;
+  $("overlay").addEventListener("click", (e) => {
+    if (mode !== "inspect") return;
+    const r = $("overlay").getBoundingClientRect();
+    inspect(Math.floor(((e.clientX - r.left) / r.width) * W), Math.floor(((e.clientY - r.top) / r.height) * H));
   });
   document.addEventListener("keydown", (e) => {
     if (e.target.tagName === "INPUT") return;
     if (e.key === "b") setMode(mode === "bvh" ? "render" : "bvh");
     if (e.key === "c") setMode(mode === "cell" ? "render" : "cell");
+    if (e.key === "i") setMode(mode === "inspect" ? "render" : "inspect");
     if (mode === "bvh" && e.key === "l") goNode(Bvh.child(0));
     if (mode === "bvh" && e.key === "r") goNode(Bvh.child(1));
     if (mode === "bvh" && e.key === "u") goNode(Bvh.parent());
@@ -151,7 +179,7 @@ function clearOverlay() {
 
 function fitViewport(W, H) {
   const stage = $("stage");
-  const s = Math.min((stage.clientWidth - 16) / W, (stage.clientHeight - 40) / H, 1.5);
+  const s = Math.min((stage.clientWidth - 16) / W, (stage.clientHeight - 40) / H, 4);
   $("viewport").style.width = `${Math.floor(W * s)}px`;
   $("viewport").style.height = `${Math.floor(H * s)}px`;
 }

@@ -9,7 +9,14 @@ const Bvh = {
     this.node = v;
     const lines = [{ points: boxEdges(v.node.min, v.node.max), color: [1, 1, 1] }];
     const colors = [[1, 0.3, 0.3], [0.3, 1, 0.3]];
-    v.children.forEach((c, i) => lines.push({ points: boxEdges(c.min, c.max), color: colors[i] }));
+    // Children are drawn shrunk a little, so that edges they share with
+    // their parent (or a flat child lying on its parent's face) stay visible.
+    const inset = 0.004 * V.len(V.sub(v.node.max, v.node.min));
+    v.children.forEach((c, i) => {
+      const lo = c.min.map((m, k) => Math.min(m + inset, (m + c.max[k]) / 2));
+      const hi = c.max.map((m, k) => Math.max(m - inset, (m + c.min[k]) / 2));
+      lines.push({ points: boxEdges(lo, hi), color: colors[i] });
+    });
     View3D.setLines(lines);
     View3D.setHighlight(primTriangles(v.prims, scene, positions));
     const n = v.node;
