@@ -43,7 +43,7 @@ pub enum Command {
     Bench(crate::bench::BenchCommand),
     /// Candela Studio: view and render the scene interactively in the
     /// browser (a local server; prints its URL).
-    View(crate::view_cmd::ViewArgs),
+    View(Box<crate::view_cmd::ViewArgs>),
 }
 
 /// Flags of a render.
