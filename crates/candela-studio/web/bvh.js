@@ -11,7 +11,7 @@ const Bvh = {
     const colors = [[1, 0.3, 0.3], [0.3, 1, 0.3]];
     // Children are drawn shrunk a little, so that edges they share with
     // their parent (or a flat child lying on its parent's face) stay visible.
-    const inset = 0.004 * V.len(V.sub(v.node.max, v.node.min));
+    const inset = 0.015 * V.len(V.sub(v.node.max, v.node.min));
     v.children.forEach((c, i) => {
       const lo = c.min.map((m, k) => Math.min(m + inset, (m + c.max[k]) / 2));
       const hi = c.max.map((m, k) => Math.max(m - inset, (m + c.min[k]) / 2));

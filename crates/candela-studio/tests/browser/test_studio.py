@@ -72,8 +72,10 @@ def test_the_first_frame_equals_the_cli_render(page, tmp_path):
 
 
 def drag(page, dx, dy, start=(0.5, 0.5)):
+    """Drags by (dx, dy), fractions of the view's size, from `start`."""
     box = page.locator("#overlay").bounding_box()
     x, y = box["x"] + box["width"] * start[0], box["y"] + box["height"] * start[1]
+    dx, dy = dx * box["width"], dy * box["height"]
     page.mouse.move(x, y)
     page.mouse.down()
     for k in range(1, 9):
@@ -85,7 +87,7 @@ def test_dragging_moves_the_camera_and_the_image(page):
     before_camera = page.evaluate("window.studio.camera()")
     before = read_png(last_png(page))
     done = page.evaluate("window.studio.done")
-    drag(page, 80, 20)
+    drag(page, 0.2, 0.05)
     wait_done(page, done)
     after_camera = page.evaluate("window.studio.camera()")
     assert after_camera["look_at"] == before_camera["look_at"], "orbiting keeps the look-at point"
@@ -97,6 +99,10 @@ def test_dragging_moves_the_camera_and_the_image(page):
 
 
 def test_bvh_mode_shows_the_root_and_its_two_children(page):
+    # Step back, so that the whole box of the scene is in view.
+    box = page.locator("#overlay").bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    page.mouse.wheel(0, 700)
     page.keyboard.press("b")
     page.wait_for_function("window.studio.bvh.node() && window.studio.bvh.node().node.index === 0")
     root = page.evaluate("window.studio.bvh.node()")
@@ -125,7 +131,7 @@ def test_a_cell_render_changes_only_the_cell(page):
     page.keyboard.press("c")
     # The cell is rendered with other settings (normals), so it shows.
     page.evaluate("Panel.changes.integrator = 'normals'")
-    drag(page, 60, 40, start=(0.25, 0.25))
+    drag(page, 0.35, 0.35, start=(0.25, 0.25))
     wait_done(page, done)
     command = page.evaluate("window.studio.lastHeader.command").split()
     i = command.index("-p")
