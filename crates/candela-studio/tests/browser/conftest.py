@@ -14,7 +14,9 @@ sys.path.insert(0, os.path.dirname(__file__))
 ROOT = pathlib.Path(__file__).resolve().parents[4]
 CANDELA = os.environ.get("CANDELA_BIN", str(ROOT / "target" / "release" / "candela"))
 CHROMIUM = os.environ.get("CHROMIUM", "/usr/bin/chromium")
-SHOTS = ROOT / "docs" / "studio"
+# Screenshots for the README, taken only when asked for:
+# STUDIO_SCREENSHOTS=docs/studio bash crates/candela-studio/ci-steps.sh
+SHOTS = os.environ.get("STUDIO_SCREENSHOTS")
 # The render every test looks at: small, so each frame takes milliseconds.
 WIDTH, HEIGHT, SPP = 160, 120, 4
 
@@ -87,5 +89,7 @@ def canvas_png(pg, canvas_id):
 
 
 def screenshot(pg, name):
-    SHOTS.mkdir(parents=True, exist_ok=True)
-    pg.screenshot(path=str(SHOTS / f"{name}.png"))
+    if SHOTS:
+        folder = ROOT / SHOTS
+        folder.mkdir(parents=True, exist_ok=True)
+        pg.screenshot(path=str(folder / f"{name}.png"))

@@ -205,7 +205,6 @@ def test_layers_show_the_film_and_the_integrator_views(page, out_dir):
         wait_done(page, done)
         command = page.evaluate("window.studio.lastHeader.command")
         assert (f"--bounce {k}" if k else f"--integrator {view}") in command, command
-    screenshot(page, "layer-bounce2")
     # Save writes through the film-to-file path into --out-dir only.
     for fmt in ["png", "exr"]:
         page.click(f"#save-{fmt}")
