@@ -2,8 +2,13 @@
 //!
 //! Each integrator is one small function, chosen per sample from the
 //! user's [`IntegratorSettings`] (Yocto/GL's layout); they share the per-thread
-//! [`ThreadContext`] for statistics. [`sample`] also returns the first
-//! hit's albedo and normal, the auxiliary images denoisers want.
+//! [`ThreadContext`] for statistics. [`pixel_sample`] is the one definition
+//! of a pixel's sample `i` (the render loop and the path inspector both call
+//! it); [`sample`] also returns the first hit's albedo, normal and distance
+//! and the sample's traversal work (the AOVs). The path integrator tells a
+//! [`PathRecorder`] every step it takes ([`record`]); the renderer passes
+//! `()`, which records nothing at no cost, and [`inspect`] passes one that
+//! builds the path records the viewer shows.
 
 pub mod direct;
 pub mod inspect;
