@@ -41,6 +41,9 @@ pub enum Command {
     /// Benchmarks of the acceleration structure and of scene loading.
     #[command(subcommand)]
     Bench(crate::bench::BenchCommand),
+    /// Candela Studio: view and render the scene interactively in the
+    /// browser (a local server; prints its URL).
+    View(Box<crate::view_cmd::ViewArgs>),
 }
 
 /// Flags of a render.
@@ -202,19 +205,29 @@ impl RenderArgs {
     /// scene's own defaults (a demo's camera, a Mitsuba file's spp) must
     /// not override.
     pub fn explicit_settings(&self, matches: &ArgMatches) -> Map<String, Value> {
-        let mut settings = self.settings.clone();
-        let aliased = self.cs184.apply(&mut settings);
-        settings
-            .to_json()
-            .into_iter()
-            .filter(|(key, _)| {
-                aliased.contains(&key.as_str())
-                    || matches
-                        .try_get_raw(key)
-                        .is_ok_and(|_| matches.value_source(key) == Some(ValueSource::CommandLine))
-            })
-            .collect()
+        explicit_settings(&self.settings, &self.cs184, matches)
     }
+}
+
+/// The settings of `settings` and `cs184` given on the command line
+/// (`matches`: of the command that flattens them), as JSON changes.
+pub fn explicit_settings(
+    settings: &Settings,
+    cs184: &Cs184Flags,
+    matches: &ArgMatches,
+) -> Map<String, Value> {
+    let mut settings = settings.clone();
+    let aliased = cs184.apply(&mut settings);
+    settings
+        .to_json()
+        .into_iter()
+        .filter(|(key, _)| {
+            aliased.contains(&key.as_str())
+                || matches
+                    .try_get_raw(key)
+                    .is_ok_and(|_| matches.value_source(key) == Some(ValueSource::CommandLine))
+        })
+        .collect()
 }
 
 /// Parses the command line, keeping the matches (which tell explicit flags
@@ -229,7 +242,7 @@ pub fn parse() -> (Cli, ArgMatches) {
 mod tests;
 
 /// `NAME=VALUE` of `-D`: the name non-empty, the value possibly empty.
-fn parse_define(text: &str) -> Result<(String, String), String> {
+pub fn parse_define(text: &str) -> Result<(String, String), String> {
     match text.split_once('=') {
         Some((name, value)) if !name.trim().is_empty() => {
             Ok((name.trim().to_string(), value.to_string()))

@@ -10,6 +10,7 @@ mod dask;
 mod progress;
 mod render_cmd;
 mod report;
+mod view_cmd;
 
 use std::process::ExitCode;
 
@@ -17,6 +18,9 @@ fn main() -> ExitCode {
     let (cli, matches) = args::parse();
     let result = match cli.command {
         Some(args::Command::Bench(cmd)) => bench::run(cmd).map(|()| render_cmd::Outcome::Done),
+        Some(args::Command::View(cmd)) => {
+            view_cmd::run(&cmd, &matches).map(|()| render_cmd::Outcome::Done)
+        }
         None => match &cli.render.dask {
             Some(address) => dask::run(&cli.render, &matches, address),
             None => render_cmd::run(&cli.render, &matches),

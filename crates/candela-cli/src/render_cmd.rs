@@ -14,6 +14,7 @@ use candela_render::scene::Scene;
 use candela_render::settings::{Settings, SettingsError};
 use candela_scene::{LoadOptions, Loaded};
 use clap::ArgMatches;
+use std::path::Path;
 use std::time::Instant;
 
 /// Exit code of a render stopped by Ctrl-C (128 + SIGINT, as shells do).
@@ -116,18 +117,34 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches) -> Result<Outcome> {
 
 /// Loads the scene (or the demo) and prints its warnings.
 fn load(args: &RenderArgs) -> Result<Loaded> {
-    let loaded = match &args.scene {
+    load_scene(
+        args.scene.as_deref(),
+        args.strict,
+        &args.defines,
+        args.quiet,
+    )
+}
+
+/// Loads `scene` (`None`: the demo) with `--strict` and `-D` defines, and
+/// prints its warnings and notes unless `quiet`.
+pub fn load_scene(
+    scene: Option<&Path>,
+    strict: bool,
+    defines: &[(String, String)],
+    quiet: bool,
+) -> Result<Loaded> {
+    let loaded = match scene {
         Some(path) => candela_scene::load(
             path,
             &LoadOptions {
-                strict: args.strict,
-                defines: args.defines.clone(),
+                strict,
+                defines: defines.to_vec(),
                 ..Default::default()
             },
         )?,
         None => candela_scene::demo_scene(),
     };
-    if !args.quiet {
+    if !quiet {
         let source = loaded.scene.source.display();
         for warning in &loaded.report.warnings {
             eprintln!("candela: warning: {source}:{warning}");

@@ -5,7 +5,7 @@
 //! [`Settings::resolve`] as JSON, so the keywords are the settings' own names
 //! and every setting the CLI has is a keyword here with no code of its own.
 
-use candela_render::settings::{Settings, SettingsError, ADAPTIVE_HELP, CELL_HELP};
+use candela_render::settings::{Settings, SettingsError};
 use candela_scene::RenderHints;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -140,21 +140,8 @@ pub fn split_samples(range: &Range<u32>, passes: u32) -> Vec<Range<u32>> {
         .collect()
 }
 
-/// The help of every setting, by name: the same text as `candela --help`.
+/// The help of every setting, by name: the same text as `candela --help`
+/// (written once, in `candela_render::settings::help`).
 pub fn settings_help() -> Vec<(String, String)> {
-    use clap::Args;
-    let cmd = Settings::augment_args(clap::Command::new("candela"));
-    let mut help: Vec<(String, String)> = cmd
-        .get_arguments()
-        .map(|a| {
-            (
-                a.get_id().to_string(),
-                a.get_help().map(|h| h.to_string()).unwrap_or_default(),
-            )
-        })
-        .collect();
-    // Settings only the CS184 spellings reach on the command line.
-    help.push(("cell".into(), CELL_HELP.into()));
-    help.push(("adaptive".into(), ADAPTIVE_HELP.into()));
-    help
+    candela_render::settings::help()
 }

@@ -151,3 +151,52 @@ fn a_cs184_flag_given_twice_keeps_its_last_values() {
     );
     assert_eq!(e["cell"]["x"], 1);
 }
+
+#[test]
+fn the_camera_flags_parse_and_need_each_other() {
+    let e = explicit(&[
+        "candela",
+        "--eye",
+        "1,2,3",
+        "--look-at=-1,0,0.5",
+        "--fov",
+        "30",
+    ]);
+    assert_eq!(e["eye"], serde_json::json!([1.0, 2.0, 3.0]));
+    assert_eq!(e["look_at"], serde_json::json!([-1.0, 0.0, 0.5]));
+    assert_eq!(e["fov"], serde_json::json!(30.0));
+    for bad in [
+        &["--eye", "1,2,3"][..],
+        &["--eye", "1,2", "--look-at", "0,0,0"],
+    ] {
+        let args = std::iter::once("candela").chain(bad.iter().copied());
+        assert!(
+            Cli::command().try_get_matches_from(args).is_err(),
+            "{bad:?}"
+        );
+    }
+}
+
+#[test]
+fn view_takes_the_render_settings() {
+    let (cli, matches) = parse(&[
+        "candela",
+        "view",
+        "--no-browser",
+        "-r",
+        "160",
+        "120",
+        "-s",
+        "4",
+        "x.dae",
+    ]);
+    let Some(Command::View(view)) = cli.command else {
+        panic!("not the view command");
+    };
+    assert!(view.no_browser);
+    let sub = matches.subcommand_matches("view").unwrap();
+    let e = explicit_settings(&view.settings, &view.cs184, sub);
+    let mut keys: Vec<&str> = e.keys().map(String::as_str).collect();
+    keys.sort_unstable();
+    assert_eq!(keys, ["height", "spp", "width"]);
+}

@@ -222,6 +222,27 @@ pub fn triangle_soup(
         .collect()
 }
 
+/// The bounding box of each primitive in input-id order: the triangles,
+/// then the spheres.
+pub fn primitive_boxes(triangles: &[[Vec3; 3]], spheres: &[(Vec3, f32)]) -> Vec<Aabb> {
+    let mut boxes: Vec<Aabb> = triangles.par_iter().map(|t| Aabb::from_points(t)).collect();
+    boxes.extend(spheres.iter().map(|&(c, r)| {
+        let r = Vec3::splat(r.abs());
+        Aabb::new(c - r, c + r)
+    }));
+    boxes
+}
+
+/// The binary hierarchy over the primitives (input ids: triangles, then
+/// spheres), as [`Accel`] builds it before choosing a layout. With
+/// [`Accel::default_options`] for [`Layout::Wide4`] it is the tree the
+/// render's 4-wide tree is collapsed from: what a viewer shows node by node.
+pub fn binary_tree(triangles: &[[Vec3; 3]], spheres: &[(Vec3, f32)], opts: BuildOptions) -> Bvh {
+    let boxes = primitive_boxes(triangles, spheres);
+    let centroids: Vec<Vec3> = boxes.par_iter().map(Aabb::center).collect();
+    Bvh::build(&boxes, &centroids, opts)
+}
+
 /// Triangles and spheres behind one BVH. Immutable and `Sync`: share it
 /// between render threads by reference.
 #[derive(Clone, Debug)]
@@ -276,14 +297,7 @@ impl Accel {
         layout: Layout,
     ) -> Self {
         let start = Instant::now();
-        let mut boxes: Vec<Aabb> = triangles.par_iter().map(|t| Aabb::from_points(t)).collect();
-        boxes.extend(spheres.iter().map(|&(c, r)| {
-            let r = Vec3::splat(r.abs());
-            Aabb::new(c - r, c + r)
-        }));
-        let centroids: Vec<Vec3> = boxes.par_iter().map(Aabb::center).collect();
-        let bvh = Bvh::build(&boxes, &centroids, opts);
-        drop((boxes, centroids));
+        let bvh = binary_tree(triangles, spheres, opts);
         let n_tri = triangles.len() as u32;
         // Input (BVH) ids: triangles, then spheres.
         let refs: Vec<PrimRef> = (0..n_tri)

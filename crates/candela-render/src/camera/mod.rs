@@ -8,6 +8,9 @@
 //! they know) or the literal camera of the file.
 
 pub mod framing;
+mod view;
+
+pub use view::CameraView;
 
 use crate::geometry::Ray;
 use crate::sampling::warp::square_to_concentric_disk;

@@ -15,7 +15,7 @@ pub use names::SceneNames;
 
 use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
-use crate::camera::Camera;
+use crate::camera::{Camera, CameraView};
 use crate::geometry::Ray;
 use crate::light::{EnvironmentMap, EnvironmentOptions, LightSet};
 use crate::material::Material;
@@ -50,6 +50,9 @@ pub struct SceneOptions {
     /// An environment map lighting the scene from infinity, in addition to
     /// the file's own lights (CS184 `-e`).
     pub environment: Option<Arc<EnvironmentMap>>,
+    /// An explicit placement replacing the framing's (`--eye`, `--look-at`,
+    /// `--up`, `--fov`; the viewer's camera); the lens options still apply.
+    pub view: Option<CameraView>,
 }
 
 impl Default for SceneOptions {
@@ -62,6 +65,7 @@ impl Default for SceneOptions {
             lens_radius: 0.0,
             focal_distance: None,
             environment: None,
+            view: None,
         }
     }
 }
@@ -115,8 +119,7 @@ pub struct Scene {
 impl Scene {
     /// Builds the render-ready scene from a description.
     pub fn build(desc: &SceneDesc, opts: &SceneOptions) -> Result<Scene, SceneError> {
-        let mut camera = frame_scene(desc, opts.camera_mode, opts.width, opts.height)?;
-        apply_lens(&mut camera, opts)?;
+        let camera = Scene::camera_for(desc, opts)?;
         let geometry = Geometry::from_desc(desc)?;
         let mut names = SceneNames::from_desc(desc);
         let mut unsupported: Vec<String> = Vec::new();
@@ -184,6 +187,19 @@ impl Scene {
             accel,
             build_time,
         })
+    }
+
+    /// The camera of `opts` for `desc`: framed ([`frame_scene`]), moved to
+    /// the explicit view if any ([`Camera::with_view`]), then the lens
+    /// options. Cheap: a viewer calls it to move the camera of a built
+    /// scene without rebuilding it.
+    pub fn camera_for(desc: &SceneDesc, opts: &SceneOptions) -> Result<Camera, SceneError> {
+        let mut camera = frame_scene(desc, opts.camera_mode, opts.width, opts.height)?;
+        if let Some(view) = &opts.view {
+            camera = camera.with_view(view)?;
+        }
+        apply_lens(&mut camera, opts)?;
+        Ok(camera)
     }
 
     /// The material with index `i`.

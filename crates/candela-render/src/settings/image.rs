@@ -3,8 +3,10 @@
 
 use super::{check, SettingsError};
 use crate::camera::framing::CameraMode;
+use crate::camera::{Camera, CameraView};
 use crate::film::PixelRect;
 use crate::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
+use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -64,6 +66,35 @@ pub struct ImageSettings {
     /// Turns the environment map about the vertical axis, in degrees.
     #[cfg_attr(feature = "cli", arg(long, value_name = "DEG", default_value_t = ImageSettings::default().env_rotate, allow_negative_numbers = true))]
     pub env_rotate: f32,
+
+    /// Camera position X,Y,Z, replacing the framing's (with `look_at`; the
+    /// viewer's "copy command line" writes these four).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_negative_numbers = true, requires = "look_at"))]
+    pub eye: Option<[f32; 3]>,
+
+    /// The point the camera looks at, X,Y,Z (with `eye`).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_negative_numbers = true, requires = "eye"))]
+    pub look_at: Option<[f32; 3]>,
+
+    /// The camera's up direction X,Y,Z with `eye` and `look_at` [default: 0,1,0].
+    #[cfg_attr(feature = "cli", arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_negative_numbers = true))]
+    pub up: Option<[f32; 3]>,
+
+    /// Vertical field of view in degrees with `eye` and `look_at` (default:
+    /// the framing's).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DEG"))]
+    pub fov: Option<f32>,
+}
+
+/// `X,Y,Z` of `--eye`, `--look-at` and `--up`.
+#[cfg(feature = "cli")]
+fn parse_point(text: &str) -> Result<[f32; 3], String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    let numbers: Result<Vec<f32>, _> = parts.iter().map(|p| p.trim().parse::<f32>()).collect();
+    match numbers.as_deref() {
+        Ok(&[x, y, z]) => Ok([x, y, z]),
+        _ => Err(format!("expected three numbers X,Y,Z, got \"{text}\"")),
+    }
 }
 
 impl Default for ImageSettings {
@@ -78,6 +109,10 @@ impl Default for ImageSettings {
             env_map: None,
             env_scale: 1.0,
             env_rotate: 0.0,
+            eye: None,
+            look_at: None,
+            up: None,
+            fov: None,
         }
     }
 }
@@ -87,6 +122,16 @@ impl ImageSettings {
     pub fn region(&self) -> PixelRect {
         self.cell
             .unwrap_or(PixelRect::full(self.width, self.height))
+    }
+
+    /// The explicit camera placement, if `eye` and `look_at` are given.
+    pub fn view(&self) -> Option<CameraView> {
+        Some(CameraView {
+            eye: Vec3::from(self.eye?),
+            target: Vec3::from(self.look_at?),
+            up: self.up.map_or(Vec3::Y, Vec3::from),
+            vfov_deg: self.fov,
+        })
     }
 
     /// Loads the environment map asked for, if any.
@@ -165,6 +210,7 @@ impl ImageSettings {
                 "a distance > 0",
             )?;
         }
+        self.validate_view()?;
         let s = self.env_scale;
         check(
             s.is_finite() && s >= 0.0,
@@ -180,5 +226,41 @@ impl ImageSettings {
             self.env_rotate,
             "a finite angle in degrees",
         )
+    }
+}
+
+impl ImageSettings {
+    /// `eye`, `look_at`, `up` and `fov` make a camera: both points or
+    /// neither, a view [`Camera::with_view`] accepts.
+    fn validate_view(&self) -> Result<(), SettingsError> {
+        let show =
+            |p: Option<[f32; 3]>| p.map_or("none".into(), |[x, y, z]| format!("{x},{y},{z}"));
+        check(
+            self.eye.is_some() == self.look_at.is_some(),
+            "eye, look_at",
+            "--eye, --look-at",
+            format_args!("{} {}", show(self.eye), show(self.look_at)),
+            "the eye and the look-at point go together",
+        )?;
+        let Some(view) = self.view() else {
+            return Ok(());
+        };
+        let probe = Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 60.0, 45.0, 4, 3);
+        match probe.with_view(&view) {
+            Ok(_) => Ok(()),
+            Err(e) => check(
+                false,
+                "eye, look_at, up, fov",
+                "--eye, --look-at, --up, --fov",
+                format_args!(
+                    "{} {} {} {}",
+                    show(self.eye),
+                    show(self.look_at),
+                    show(self.up),
+                    self.fov.map_or("none".into(), |f| f.to_string())
+                ),
+                e,
+            ),
+        }
     }
 }

@@ -17,6 +17,8 @@
 //! per-render types ([`RenderSettings`], [`SceneOptions`]) are derived from
 //! a validated `Settings` here and nowhere else.
 
+#[cfg(feature = "cli")]
+mod help;
 mod image;
 mod integrator;
 mod output;
@@ -25,6 +27,8 @@ mod sampling;
 #[cfg(test)]
 mod tests;
 
+#[cfg(feature = "cli")]
+pub use help::{flags, help, SettingFlag};
 pub use image::{ImageSettings, BUILT_IN_SKY, CELL_HELP};
 pub use integrator::{Estimator, IntegratorSettings, ROULETTE_FROM};
 pub use output::{OutputSettings, Tone};
@@ -231,14 +235,25 @@ impl Settings {
     /// What the scene build needs; loads the environment map, if any.
     pub fn scene_options(&self) -> Result<SceneOptions, SettingsError> {
         Ok(SceneOptions {
+            environment: self.image.environment()?,
+            ..self.camera_options()
+        })
+    }
+
+    /// The scene options without loading the environment map (`None`):
+    /// all that [`Scene::camera_for`](crate::scene::Scene::camera_for)
+    /// reads, so a viewer can move the camera of a built scene cheaply.
+    pub fn camera_options(&self) -> SceneOptions {
+        SceneOptions {
             width: self.image.width,
             height: self.image.height,
             camera_mode: self.image.camera,
             bvh: self.run.bvh.into(),
             lens_radius: self.image.aperture,
             focal_distance: self.image.focal_distance,
-            environment: self.image.environment()?,
-        })
+            environment: None,
+            view: self.image.view(),
+        }
     }
 
     /// Runs `f` (a scene build) on `threads` threads, so that `-t` bounds

@@ -274,3 +274,32 @@ fn the_camera_is_a_name_or_a_file_camera_number() {
         "cs184 needs no camera"
     );
 }
+
+#[test]
+fn an_explicit_camera_needs_both_points_and_a_valid_view() {
+    let json = |v: serde_json::Value| v.as_object().unwrap().clone();
+    let only_eye = Settings::from_json(&json(serde_json::json!({"eye": [0, 1, 5]})));
+    assert!(only_eye
+        .unwrap_err()
+        .to_string()
+        .starts_with("eye, look_at (--eye, --look-at)"));
+    let same = Settings::from_json(&json(
+        serde_json::json!({"eye": [1, 1, 1], "look_at": [1, 1, 1]}),
+    ));
+    assert!(same
+        .unwrap_err()
+        .to_string()
+        .contains("the eye is at the look-at point"));
+    let wide = json(serde_json::json!({"eye": [0, 1, 5], "look_at": [0, 1, 0], "fov": 180}));
+    assert!(Settings::from_json(&wide).is_err());
+    let good = json(serde_json::json!({"eye": [0, 1, 5], "look_at": [0, 1, 0], "fov": 40}));
+    let view = Settings::from_json(&good)
+        .unwrap()
+        .camera_options()
+        .view
+        .unwrap();
+    assert_eq!(view.eye, glam::Vec3::new(0.0, 1.0, 5.0));
+    assert_eq!(view.up, glam::Vec3::Y, "up defaults to +Y");
+    assert_eq!(view.vfov_deg, Some(40.0));
+    assert!(Settings::default().camera_options().view.is_none());
+}

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Browser tests of Candela Studio: Debian's chromium driven by Playwright for
+# Python (its own browser download is never used). Installs what is missing,
+# builds the release binary if it is not up to date (CI's smoke step builds
+# the same one), and runs pytest. Run from anywhere: bash crates/candela-studio/ci-steps.sh
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+if [ ! -x /usr/bin/chromium ]; then
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium
+fi
+
+venv=target/studio-venv
+if ! "$venv/bin/python" -c "import playwright, pytest" 2>/dev/null; then
+  python3 -m venv "$venv"
+  "$venv/bin/pip" install -q playwright pytest
+fi
+
+cargo build --release -p candela-cli
+CANDELA_BIN="$PWD/target/release/candela" "$venv/bin/python" -m pytest -q -p no:cacheprovider \
+  crates/candela-studio/tests/browser

@@ -1,0 +1,313 @@
+//! The HTTP and WebSocket server: routes, the token check, and one render
+//! worker per WebSocket connection.
+//!
+//! Routes (every one needs `?token=`; 403 otherwise):
+//! - `/` the page, `/static/<file>` its scripts and style;
+//! - `/api/scene` the starting camera, image size and primitive counts;
+//! - `/api/mesh` the triangles (see [`crate::mesh`]);
+//! - `/api/settings` the settings form ([`crate::settings_form`]);
+//! - `/api/bvh?node=N` one BVH node ([`crate::bvh_view`]);
+//! - `/ws` the WebSocket of render requests and frames ([`crate::protocol`]).
+
+use crate::bvh_view::BvhView;
+use crate::protocol::{parse_request, Reply, Request};
+use crate::worker::{self, Job, Outgoing, Source};
+use crate::{assets, mesh, settings_form, token};
+use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
+use axum::extract::{Path, Query, Request as HttpRequest, State};
+use axum::http::{header, StatusCode};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use axum::routing::get;
+use axum::{Json, Router};
+use candela_render::camera::{Camera, CameraView};
+use candela_render::render::Cancel;
+use candela_render::scene::{Geometry, Scene};
+use candela_render::settings::Settings;
+use candela_scene::Loaded;
+use glam::Vec3;
+use serde::Deserialize;
+use serde_json::{json, Map, Value};
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+use tokio::sync::mpsc;
+
+/// How to start the studio.
+#[derive(Clone, Debug)]
+pub struct StudioOptions {
+    /// The scene file (`None`: the demo), for the command line.
+    pub scene_path: Option<PathBuf>,
+    /// Where "save" writes.
+    pub out_dir: PathBuf,
+    /// The secret of the URL; `None` makes a fresh one.
+    pub token: Option<String>,
+    /// Settings given on the command line (JSON changes over the scene's
+    /// hints); the page's changes go over them.
+    pub settings: Map<String, Value>,
+}
+
+/// A loaded scene ready to serve: what every request reads.
+#[derive(Clone)]
+pub struct Studio {
+    shared: Arc<Shared>,
+}
+
+struct Shared {
+    token: String,
+    source: Arc<Source>,
+    scene_info: Value,
+    mesh: Vec<u8>,
+    bvh: BvhView,
+    form: Value,
+}
+
+impl Studio {
+    /// Prepares `loaded` for the viewer: the default settings for it (its
+    /// hints applied), its starting camera, mesh and BVH.
+    pub fn new(loaded: Loaded, opts: StudioOptions) -> Result<Studio, String> {
+        let settings =
+            Settings::resolve(&loaded.hints, &opts.settings).map_err(|e| e.to_string())?;
+        let desc = &loaded.scene;
+        let camera =
+            Scene::camera_for(desc, &settings.camera_options()).map_err(|e| e.to_string())?;
+        let geometry = Geometry::from_desc(desc).map_err(|e| e.to_string())?;
+        let triangles = mesh::triangles(&geometry);
+        let view = orbit_view(&camera, desc.bounds());
+        let scene_info = json!({
+            "source": desc.source.display().to_string(),
+            "width": settings.image.width,
+            "height": settings.image.height,
+            "view": {
+                "eye": view.eye.to_array(),
+                "target": view.target.to_array(),
+                "up": view.up.to_array(),
+                "fov": view.vfov_deg,
+            },
+            "orthographic": camera.is_orthographic(),
+            "triangles": geometry.triangles.triangles.len(),
+            "spheres": geometry.spheres.len(),
+            "sphere_triangles": mesh::SPHERE_TRIANGLES,
+        });
+        let bvh = BvhView::build(&geometry, settings.run.bvh.into());
+        let form =
+            serde_json::to_value(settings_form::describe(&settings)).map_err(|e| e.to_string())?;
+        Ok(Studio {
+            shared: Arc::new(Shared {
+                token: opts.token.unwrap_or_else(token::new_token),
+                source: Arc::new(Source {
+                    loaded,
+                    path: opts.scene_path,
+                    out_dir: opts.out_dir,
+                    base: opts.settings,
+                }),
+                scene_info,
+                mesh: mesh::to_bytes(&triangles),
+                bvh,
+                form,
+            }),
+        })
+    }
+
+    /// The secret every request must carry.
+    pub fn token(&self) -> &str {
+        &self.shared.token
+    }
+
+    /// The page's URL on `addr`.
+    pub fn url(&self, addr: SocketAddr) -> String {
+        format!("http://{addr}/?token={}", self.token())
+    }
+}
+
+/// The camera's view with the look-at point moved along the view direction
+/// to the depth of the scene's centre: the page orbits about it (a file
+/// camera's own look-at point is often one unit ahead of the eye). Only
+/// the look-at distance changes, so the camera renders the same image
+/// (pinhole: the distance sets only the plane in focus of a thin lens).
+fn orbit_view(camera: &Camera, bounds: Option<(Vec3, Vec3)>) -> CameraView {
+    let mut view = camera.view();
+    if let Some((lo, hi)) = bounds {
+        let depth = ((lo + hi) * 0.5 - camera.eye).dot(camera.forward);
+        if depth > 0.0 && camera.lens_radius == 0.0 {
+            view.target = camera.eye + camera.forward * depth;
+        }
+    }
+    view
+}
+
+/// The routes, behind the token check.
+pub fn router(studio: &Studio) -> Router {
+    let shared = studio.shared.clone();
+    Router::new()
+        .route("/", get(index))
+        .route("/static/{file}", get(static_file))
+        .route("/api/scene", get(scene_info))
+        .route("/api/mesh", get(mesh_bytes))
+        .route("/api/settings", get(settings))
+        .route("/api/bvh", get(bvh_node))
+        .route("/ws", get(websocket))
+        .layer(middleware::from_fn_with_state(
+            shared.clone(),
+            require_token,
+        ))
+        .with_state(shared)
+}
+
+/// Serves `studio` on `listener` until the process ends.
+pub async fn serve(listener: tokio::net::TcpListener, studio: Studio) -> std::io::Result<()> {
+    axum::serve(listener, router(&studio)).await
+}
+
+type Shared_ = Arc<Shared>;
+
+async fn require_token(State(s): State<Shared_>, req: HttpRequest, next: Next) -> Response {
+    if token::query_has_token(req.uri().query(), &s.token) {
+        next.run(req).await
+    } else {
+        (
+            StatusCode::FORBIDDEN,
+            "forbidden: this URL needs the token that `candela view` printed\n",
+        )
+            .into_response()
+    }
+}
+
+async fn index(State(s): State<Shared_>) -> Response {
+    let page = assets::INDEX_HTML.replace("{{TOKEN}}", &s.token);
+    (
+        [
+            (header::CONTENT_TYPE, "text/html; charset=utf-8"),
+            (header::CACHE_CONTROL, "no-store"),
+        ],
+        page,
+    )
+        .into_response()
+}
+
+async fn static_file(Path(file): Path<String>) -> Response {
+    match assets::find(&file) {
+        Some(a) => ([(header::CONTENT_TYPE, a.content_type)], a.body).into_response(),
+        None => (StatusCode::NOT_FOUND, "no such file\n").into_response(),
+    }
+}
+
+async fn scene_info(State(s): State<Shared_>) -> Json<Value> {
+    Json(s.scene_info.clone())
+}
+
+async fn mesh_bytes(State(s): State<Shared_>) -> Response {
+    (
+        [(header::CONTENT_TYPE, "application/octet-stream")],
+        s.mesh.clone(),
+    )
+        .into_response()
+}
+
+async fn settings(State(s): State<Shared_>) -> Json<Value> {
+    Json(json!({ "fields": s.form }))
+}
+
+#[derive(Deserialize)]
+struct NodeQuery {
+    node: Option<String>,
+}
+
+async fn bvh_node(State(s): State<Shared_>, Query(q): Query<NodeQuery>) -> Response {
+    let text = q.node.unwrap_or_else(|| "0".into());
+    let Ok(index) = text.parse::<u32>() else {
+        let msg = format!("node {text}: expected a node index");
+        return (StatusCode::BAD_REQUEST, Json(Reply::error(msg))).into_response();
+    };
+    match s.bvh.node(index) {
+        Some(view) => Json(view).into_response(),
+        None => {
+            let msg = format!("node {index}: the BVH has {} nodes", s.bvh.len());
+            (StatusCode::BAD_REQUEST, Json(Reply::error(msg))).into_response()
+        }
+    }
+}
+
+async fn websocket(State(s): State<Shared_>, ws: WebSocketUpgrade) -> Response {
+    ws.on_upgrade(move |socket| session(socket, s))
+}
+
+/// One page's session: requests in, frames out, one render worker.
+async fn session(mut socket: WebSocket, s: Shared_) {
+    let (out_tx, mut out_rx) = mpsc::unbounded_channel::<Outgoing>();
+    let jobs = match worker::spawn(s.source.clone(), move |m| {
+        let _ = out_tx.send(m);
+    }) {
+        Ok(jobs) => jobs,
+        Err(e) => {
+            let text = Reply::error(format!("cannot start the renderer: {e}")).to_text();
+            let _ = socket.send(Message::Text(text.into())).await;
+            return;
+        }
+    };
+    let mut current = Cancel::new();
+    let mut next_id = 0u64;
+    loop {
+        tokio::select! {
+            incoming = socket.recv() => {
+                let text = match incoming {
+                    Some(Ok(Message::Text(t))) => t.to_string(),
+                    Some(Ok(Message::Binary(_))) => {
+                        let text = Reply::error("bad request: expected JSON text").to_text();
+                        if socket.send(Message::Text(text.into())).await.is_err() { break; }
+                        continue;
+                    }
+                    Some(Ok(_)) => continue,
+                    Some(Err(_)) | None => break,
+                };
+                let job = match parse_request(&text) {
+                    Ok(Request::Render { settings, layer }) => {
+                        current.cancel();
+                        current = Cancel::new();
+                        next_id += 1;
+                        Job::Render { id: next_id, changes: settings, layer, cancel: current.clone(), received: Instant::now() }
+                    }
+                    Ok(Request::Cancel) => { current.cancel(); continue; }
+                    Ok(Request::Layer { layer }) => Job::Layer(layer),
+                    Ok(Request::Save { format }) => Job::Save(format),
+                    Ok(Request::Inspect { x, y, samples }) => Job::Inspect { pixel: (x, y), samples },
+                    Err(message) => {
+                        let text = Reply::error(message).to_text();
+                        if socket.send(Message::Text(text.into())).await.is_err() { break; }
+                        continue;
+                    }
+                };
+                if jobs.send(job).is_err() { break; }
+            }
+            Some(out) = out_rx.recv() => {
+                let msg = match out {
+                    Outgoing::Text(t) => Message::Text(t.into()),
+                    Outgoing::Binary(b) => Message::Binary(b.into()),
+                };
+                if socket.send(msg).await.is_err() { break; }
+            }
+        }
+    }
+    // Dropping the job sender ends the worker after its current job.
+    current.cancel();
+}
+
+/// Binds `addr`, tells `ready` the address bound (the port, if 0 was
+/// asked), and serves `studio` until the process ends, on a small tokio
+/// runtime (the renders run on their own threads).
+pub fn run(
+    studio: Studio,
+    addr: SocketAddr,
+    ready: impl FnOnce(SocketAddr),
+) -> std::io::Result<()> {
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()?;
+    runtime.block_on(async move {
+        let listener = tokio::net::TcpListener::bind(addr).await?;
+        ready(listener.local_addr()?);
+        serve(listener, studio).await
+    })
+}

@@ -1,0 +1,204 @@
+//! The server without a browser: the token on every route and on the
+//! WebSocket upgrade, error replies to bad requests, the settings form's
+//! round trip, and a small render streamed as frames.
+
+use candela_render::settings::Settings;
+use candela_studio::{serve, Studio, StudioOptions};
+use futures_util::{SinkExt, StreamExt};
+use serde_json::{json, Map, Value};
+use std::net::SocketAddr;
+use std::time::Duration;
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio_tungstenite::tungstenite::Message;
+
+const TOKEN: &str = "0123456789abcdef0123456789abcdef";
+
+async fn start() -> SocketAddr {
+    let studio = Studio::new(
+        candela_scene::demo_scene(),
+        StudioOptions {
+            scene_path: None,
+            out_dir: std::env::temp_dir(),
+            token: Some(TOKEN.into()),
+            settings: Map::new(),
+        },
+    )
+    .expect("the demo scene loads");
+    let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.unwrap();
+    let addr = listener.local_addr().unwrap();
+    tokio::spawn(serve(listener, studio));
+    addr
+}
+
+/// The status code and body of a GET.
+async fn get(addr: SocketAddr, path: &str) -> (u16, String) {
+    let mut stream = tokio::net::TcpStream::connect(addr).await.unwrap();
+    let request = format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n");
+    stream.write_all(request.as_bytes()).await.unwrap();
+    let mut response = String::new();
+    stream.read_to_string(&mut response).await.unwrap();
+    let status = response[9..12].parse().unwrap();
+    let body = response.split_once("\r\n\r\n").map_or("", |(_, b)| b);
+    (status, body.to_string())
+}
+
+#[tokio::test]
+async fn every_route_needs_the_token() {
+    let addr = start().await;
+    for path in [
+        "/",
+        "/static/app.js",
+        "/api/scene",
+        "/api/mesh",
+        "/api/settings",
+        "/api/bvh",
+        "/ws",
+    ] {
+        assert_eq!(get(addr, path).await.0, 403, "{path} without a token");
+        let wrong = format!("{path}?token=0123456789abcdef0123456789abcdee");
+        assert_eq!(get(addr, &wrong).await.0, 403, "{path} with a wrong token");
+    }
+    let (status, page) = get(addr, &format!("/?token={TOKEN}")).await;
+    assert_eq!(status, 200);
+    assert!(
+        page.contains(&format!("app.js?token={TOKEN}")),
+        "the page's scripts carry the token"
+    );
+    assert_eq!(
+        get(addr, &format!("/static/app.js?token={TOKEN}")).await.0,
+        200
+    );
+    assert_eq!(
+        get(addr, &format!("/static/nope.js?token={TOKEN}")).await.0,
+        404
+    );
+    // The WebSocket upgrade itself is refused without the token.
+    let url = format!("ws://{addr}/ws");
+    match tokio_tungstenite::connect_async(url).await {
+        Err(tokio_tungstenite::tungstenite::Error::Http(r)) => assert_eq!(r.status(), 403),
+        other => panic!("upgrade without a token: {:?}", other.map(|_| ())),
+    }
+}
+
+#[tokio::test]
+async fn bvh_requests_out_of_range_are_errors() {
+    let addr = start().await;
+    let (status, body) = get(addr, &format!("/api/bvh?node=0&token={TOKEN}")).await;
+    assert_eq!(status, 200);
+    let root: Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(root["children"].as_array().unwrap().len(), 2);
+    for bad in ["99999", "-1", "x"] {
+        let (status, body) = get(addr, &format!("/api/bvh?node={bad}&token={TOKEN}")).await;
+        assert_eq!(status, 400, "node={bad}");
+        assert!(body.contains("\"error\""), "{body}");
+    }
+}
+
+#[tokio::test]
+async fn the_settings_form_round_trips() {
+    let addr = start().await;
+    let (status, body) = get(addr, &format!("/api/settings?token={TOKEN}")).await;
+    assert_eq!(status, 200);
+    let form: Value = serde_json::from_str(&body).unwrap();
+    let values: Map<String, Value> = form["fields"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| (f["name"].as_str().unwrap().to_string(), f["value"].clone()))
+        .collect();
+    let hints = candela_scene::demo_scene().hints;
+    let scene_settings = Settings::resolve(&hints, &Map::new()).unwrap();
+    // Every setting is in the form, and sending the form back unchanged
+    // gives the same settings.
+    assert_eq!(values.len(), scene_settings.to_json().len());
+    assert_eq!(Settings::resolve(&hints, &values).unwrap(), scene_settings);
+}
+
+type Socket =
+    tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<tokio::net::TcpStream>>;
+
+async fn connect(addr: SocketAddr) -> Socket {
+    let url = format!("ws://{addr}/ws?token={TOKEN}");
+    tokio_tungstenite::connect_async(url).await.unwrap().0
+}
+
+/// The next message, within a generous time.
+async fn next(ws: &mut Socket) -> Message {
+    let wait = tokio::time::timeout(Duration::from_secs(120), ws.next());
+    wait.await.expect("a reply in time").expect("open").unwrap()
+}
+
+async fn error_reply(ws: &mut Socket, request: &str) -> String {
+    ws.send(Message::Text(request.into())).await.unwrap();
+    match next(ws).await {
+        Message::Text(t) => {
+            let v: Value = serde_json::from_str(&t).unwrap();
+            assert_eq!(v["type"], "error", "{t}");
+            v["message"].as_str().unwrap().to_string()
+        }
+        other => panic!("expected an error, got {other:?}"),
+    }
+}
+
+#[tokio::test]
+async fn bad_requests_get_error_replies_and_the_session_goes_on() {
+    let addr = start().await;
+    let mut ws = connect(addr).await;
+    assert!(error_reply(&mut ws, "{").await.starts_with("bad request:"));
+    assert!(error_reply(&mut ws, r#"{"type":"teleport"}"#)
+        .await
+        .starts_with("bad request:"));
+    let render = |settings: Value| json!({"type": "render", "settings": settings}).to_string();
+    let m = error_reply(&mut ws, &render(json!({"spp": 1e12}))).await;
+    assert!(m.contains("spp"), "{m}");
+    let m = error_reply(&mut ws, &render(json!({"spp": 0}))).await;
+    assert!(m.contains("spp (-s) 0"), "{m}");
+    let m = error_reply(&mut ws, &render(json!({"cell": [790, 590, 100, 100]}))).await;
+    assert!(m.contains("cell (-p)"), "{m}");
+    let m = error_reply(
+        &mut ws,
+        &render(json!({"width": 4000000, "height": 4000000})),
+    )
+    .await;
+    assert!(m.contains("memory"), "{m}");
+    let m = error_reply(
+        &mut ws,
+        &render(json!({"eye": [0, 0, 0], "look_at": [0, 0, 0]})),
+    )
+    .await;
+    assert!(m.contains("eye"), "{m}");
+    let m = error_reply(&mut ws, &render(json!({"warp": 9}))).await;
+    assert!(m.contains("unknown setting `warp`"), "{m}");
+    let m = error_reply(&mut ws, r#"{"type":"save","format":"png"}"#).await;
+    assert!(m.contains("no image"), "{m}");
+    // Still serving: a small render streams a coarse frame, then passes.
+    let small = json!({"width": 40, "height": 30, "spp": 3});
+    ws.send(Message::Text(render(small).into())).await.unwrap();
+    let mut spp_seen = Vec::new();
+    loop {
+        let Message::Binary(bytes) = next(&mut ws).await else {
+            panic!("expected a frame");
+        };
+        let n = u32::from_le_bytes(bytes[..4].try_into().unwrap()) as usize;
+        let header: Value = serde_json::from_slice(&bytes[4..4 + n]).unwrap();
+        let png = png::Decoder::new(std::io::Cursor::new(bytes[4 + n..].to_vec()));
+        let info = png.read_info().unwrap().info().clone();
+        assert_eq!(
+            (info.width, info.height),
+            (
+                header["width"].as_u64().unwrap() as u32,
+                header["height"].as_u64().unwrap() as u32
+            )
+        );
+        if header["coarse"] == true {
+            assert!(spp_seen.is_empty(), "the coarse frame comes first");
+        } else {
+            assert_eq!((info.width, info.height), (40, 30));
+        }
+        spp_seen.push(header["spp"].as_u64().unwrap());
+        if header["done"] == true {
+            break;
+        }
+    }
+    assert_eq!(spp_seen, vec![1, 1, 3], "coarse, then 0..1, then 1..3");
+}
