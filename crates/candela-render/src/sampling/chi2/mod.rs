@@ -31,8 +31,13 @@ use quadrature::integrate_2d_panels;
 
 /// An upper bound on the number of chi-square tests in the crate, used for
 /// the Šidák correction; overestimating only makes each test stricter about
-/// rejecting, i.e. more conservative against false alarms.
-pub(crate) const TEST_COUNT: usize = 100;
+/// rejecting, i.e. more conservative against false alarms. [`Chi2Test::run`]
+/// counts the runs of the test process and fails once they exceed it, so
+/// the bound cannot silently go stale as tests are added.
+pub(crate) const TEST_COUNT: usize = 1000;
+
+/// Chi-square runs so far in this process (see [`TEST_COUNT`]).
+static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 /// Overall false-rejection rate of the whole suite.
 pub(crate) const SIGNIFICANCE: f64 = 0.01;
 
@@ -175,6 +180,11 @@ impl Chi2Test {
         mut sample: impl FnMut([f32; 3]) -> Option<(Vec3, f32)>,
         pdf: impl Fn(Vec3) -> f32,
     ) -> Chi2Outcome {
+        let runs = RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        assert!(
+            runs <= TEST_COUNT,
+            "{runs} chi-square runs: raise TEST_COUNT so the Šidák correction holds"
+        );
         let (rows, cols) = self.resolution;
         let (lo, hi) = self.domain.bounds();
         let cell = (hi - lo) / Vec2::new(rows as f32, cols as f32);
