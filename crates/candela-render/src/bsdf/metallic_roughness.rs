@@ -29,10 +29,11 @@
 //! here the base is weighted by
 //! (1 − S(F0d, cos θo)) (1 − S(F0d, cos θi)) / (1 − F̄), with
 //! F̄ = ∫ S(F0d, μ) 2μ dμ = F0d + (F90 − F0d)/21 the hemispherical average
-//! of Schlick's Fresnel (0 when F̄ = 1: nothing enters the base): still reciprocal (symmetric in wo and wi), and the
-//! base then reflects exactly c (1 − S(F0d, cos θo)), what the specular
-//! layer leaves (Shirley et al. 1997, "A Practitioners' Assessment of Light
-//! Reflection Models", use the same per-direction transmission factors).
+//! of Schlick's Fresnel (the weight is 0 when F̄ = 1: nothing enters the
+//! base): still reciprocal (symmetric in wo and wi), and the base then
+//! reflects exactly c (1 − S(F0d, cos θo)), what the specular layer leaves
+//! (Shirley et al. 1997, "A Practitioners' Assessment of Light Reflection
+//! Models", use the same per-direction transmission factors).
 //!
 //! The transmitted fraction ("glass-like transmission") is the rough
 //! dielectric of `rough_dielectric.rs` (Walter et al. 2007) with the same
