@@ -292,6 +292,12 @@ def write_dae():
         fh.write(text)
 
 
+# KHR_materials_specular with specularFactor 0: no dielectric specular
+# layer, so a glTF metallic-roughness material is exactly Lambertian (and a
+# black one absorbs everything, as the .dae's pure-emitter lamp does).
+NO_SPECULAR = {"KHR_materials_specular": {"specularFactor": 0}}
+
+
 def gltf_material(name):
     m = {"name": name}
     if name == LAMP:
@@ -299,16 +305,21 @@ def gltf_material(name):
         strength = max(LAMP_RADIANCE, 1.0)
         m["pbrMetallicRoughness"] = {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}
         m["emissiveFactor"] = [LAMP_RADIANCE / strength] * 3
+        m["extensions"] = dict(NO_SPECULAR)
         if strength > 1.0:
-            m["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}
+            m["extensions"]["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
     elif name == MIRROR:
-        # A smooth metal: Candela draws it as a mirror of its base colour.
+        # A smooth metal (roughness 0: a delta lobe in Candela) of Schlick
+        # reflectance F0 + (1 - F0)(1 - cos)^5, F0 the base colour: the
+        # .dae's mirror except for Schlick's grazing tail (on average 1/21
+        # of 1 - F0 over the sphere's disc, 0.24 %).
         m["pbrMetallicRoughness"] = {
             "baseColorFactor": [MIRROR_REFLECTANCE] * 3 + [1],
             "metallicFactor": 1, "roughnessFactor": 0}
     else:
         m["pbrMetallicRoughness"] = {
             "baseColorFactor": list(DIFFUSE[name]) + [1], "metallicFactor": 0, "roughnessFactor": 1}
+        m["extensions"] = dict(NO_SPECULAR)
     return m
 
 
@@ -345,7 +356,7 @@ def write_gltf():
     nodes.append({"name": "Camera", "camera": 0, "translation": list(EYE)})
     doc = {
         "asset": {"version": "2.0", "generator": "scenes/cornell/make.py"},
-        "extensionsUsed": ["KHR_materials_emissive_strength"],
+        "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_specular"],
         "scene": 0,
         "scenes": [{"name": "cornell", "nodes": list(range(len(nodes)))}],
         "nodes": nodes,

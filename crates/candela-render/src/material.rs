@@ -126,13 +126,12 @@ impl Material {
                 roughness,
                 transmission,
                 ior,
-            } => Some(Bsdf::MetallicRoughness(MetallicRoughness::new(
-                base_color,
-                metallic,
-                roughness,
-                transmission,
-                ior,
-            ))),
+                specular,
+                specular_color,
+            } => Some(Bsdf::MetallicRoughness(
+                MetallicRoughness::new(base_color, metallic, roughness, transmission, ior)
+                    .with_specular(specular, specular_color),
+            )),
         };
         let (textures, unusable) =
             MaterialTextures::from_slots(&desc.textures, bsdf.as_ref(), textures);

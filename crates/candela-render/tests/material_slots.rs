@@ -107,6 +107,8 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         roughness: 0.5,
         transmission: 0.0,
         ior: 1.5,
+        specular: 1.0,
+        specular_color: Vec3::ONE,
     };
     let (_, unsupported) = Material::from_desc(&gltf, &mut cache);
     assert!(unsupported.is_empty(), "{unsupported:?}");

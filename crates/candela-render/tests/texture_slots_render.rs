@@ -252,6 +252,8 @@ fn a_flat_normal_map_renders_bit_for_bit_as_none() {
             roughness: 0.4,
             transmission: 0.0,
             ior: 1.5,
+            specular: 1.0,
+            specular_color: Vec3::ONE,
         },
         None,
     );

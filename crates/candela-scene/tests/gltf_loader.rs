@@ -193,9 +193,31 @@ fn metallic_roughness_materials_map_onto_the_bsdfs() {
             metallic: 1.0,
             roughness: 0.5,
             transmission: 0.0,
-            ior: 1.5
+            ior: 1.5,
+            specular: 1.0,
+            specular_color: Vec3::ONE,
         }
     );
+}
+
+#[test]
+fn khr_materials_specular_sets_the_layers_strength_and_tint() {
+    let text = gltf_text(|d| {
+        d["extensionsUsed"] = json!(["KHR_materials_specular"]);
+        d["materials"] = json!([
+            {"pbrMetallicRoughness": {"metallicFactor": 0.0},
+             "extensions": {"KHR_materials_specular":
+                 {"specularFactor": 0.0, "specularColorFactor": [0.5, 1.0, 2.0]}}},
+        ]);
+    });
+    let l = load_ok(&write("specular.gltf", &text));
+    assert!(
+        matches!(l.scene.materials[0].bsdf, BsdfDesc::MetallicRoughness { specular, specular_color, .. }
+            if specular == 0.0 && specular_color == Vec3::new(0.5, 1.0, 2.0)),
+        "{:?}",
+        l.scene.materials[0].bsdf
+    );
+    assert!(!l.report.mentions("KHR_materials_specular"), "{}", l.report);
 }
 
 #[test]
@@ -249,7 +271,9 @@ fn emission_transmission_and_texture_slots() {
             metallic: 0.0,
             roughness: 0.0,
             transmission: 1.0,
-            ior: 1.33
+            ior: 1.33,
+            specular: 1.0,
+            specular_color: Vec3::ONE,
         }
     );
 }

@@ -1,6 +1,6 @@
 //! The glTF 2.0 metallic-roughness BSDF (glTF 2.0 specification,
-//! appendix B "BRDF Implementation"), with `KHR_materials_transmission`
-//! and `KHR_materials_ior`.
+//! appendix B "BRDF Implementation"), with `KHR_materials_transmission`,
+//! `KHR_materials_ior` and `KHR_materials_specular`.
 //!
 //! With base colour c, metalness m, transmission t, α = roughness² on GGX
 //! (Trowbridge-Reitz) microfacets, h the half vector and
@@ -12,6 +12,13 @@
 //! - opaque dielectric = S(F0d) · specular + Lambert · c / π, with
 //!   F0d = ((ior − 1)/(ior + 1))² (0.04 at the default ior 1.5): a Lambert
 //!   base under a specular layer;
+//! - `KHR_materials_specular`: with strength s (`specularFactor`, 1 by
+//!   default) and tint k (`specularColorFactor`, white by default) the
+//!   layer's Fresnel is S(F0d, F90) = F0d + (F90 − F0d)(1 − |wo·h|)⁵ with
+//!   F0d = min(((ior − 1)/(ior + 1))² k, 1) · s and F90 = s, per channel.
+//!   At s = 0 the layer is gone and the dielectric is exactly Lambert c/π
+//!   (the base's weight below is then exactly 1): the way a glTF file says
+//!   "pure Lambertian";
 //! - f = m · metal + (1 − m)(1 − t) · opaque dielectric + (1 − m) t · glass.
 //!
 //! **Lambert's weight.** The spec's `fresnel_mix` weights the base by
@@ -21,11 +28,12 @@
 //! spec calls its BRDF an approximation that implementations may improve;
 //! here the base is weighted by
 //! (1 − S(F0d, cos θo)) (1 − S(F0d, cos θi)) / (1 − F̄), with
-//! F̄ = ∫ S(F0d, μ) 2μ dμ = F0d + (1 − F0d)/21 the hemispherical average of
-//! Schlick's Fresnel: still reciprocal (symmetric in wo and wi), and the
-//! base then reflects exactly c (1 − S(F0d, cos θo)), what the specular
-//! layer leaves (Shirley et al. 1997, "A Practitioners' Assessment of Light
-//! Reflection Models", use the same per-direction transmission factors).
+//! F̄ = ∫ S(F0d, μ) 2μ dμ = F0d + (F90 − F0d)/21 the hemispherical average
+//! of Schlick's Fresnel (the weight is 0 when F̄ = 1: nothing enters the
+//! base): still reciprocal (symmetric in wo and wi), and the base then
+//! reflects exactly c (1 − S(F0d, cos θo)), what the specular layer leaves
+//! (Shirley et al. 1997, "A Practitioners' Assessment of Light Reflection
+//! Models", use the same per-direction transmission factors).
 //!
 //! The transmitted fraction ("glass-like transmission") is the rough
 //! dielectric of `rough_dielectric.rs` (Walter et al. 2007) with the same
@@ -36,9 +44,13 @@
 //! are meant to). The opaque lobes are two-sided (mirrored when `wo.z < 0`),
 //! the glass reads the side of `wo`.
 //!
-//! Roughness 0 is clamped to [`MIN_ALPHA`](super::MIN_ALPHA) (a near-mirror):
-//! the lobes stay non-delta, so one `f` and one `pdf` describe the whole
-//! mixture and MIS works everywhere.
+//! **Roughness 0** makes the opaque specular lobe (metal and dielectric
+//! layer) a delta lobe, a perfect mirror of reflectance S(F0, cos θo): it
+//! leaves `f` and `pdf` (which keep the diffuse lobe) and is sampled with
+//! its discrete probability, as the smooth plastic's coating is. Metallic
+//! 1, roughness 0, white base is then exactly [`Bsdf::Mirror`](super::Bsdf::Mirror)
+//! of reflectance 1 (Schlick's S(1) = 1). The transmitted lobe stays a
+//! rough dielectric with α clamped to [`MIN_ALPHA`](super::MIN_ALPHA).
 //!
 //! Sampling picks a lobe with probabilities that depend on `wo` only
 //! (the lobes' approximate albedos: Schlick at cos θo for the specular
@@ -55,6 +67,7 @@ use glam::{Vec2, Vec3};
 
 use super::distribution::MicrofacetDistribution;
 use super::rough_dielectric::RoughDielectric;
+use super::specular::{delta_sample, reflect_local, MIRROR_FLAGS};
 use super::{BsdfFlags, BsdfSample};
 use crate::sampling::warp::square_to_cosine_hemisphere;
 
@@ -66,6 +79,8 @@ pub struct MetallicRoughness {
     roughness: f32,
     transmission: f32,
     ior: f32,
+    specular: f32,
+    specular_color: Vec3,
 }
 
 /// Lobe selection probabilities at one `wo`.
@@ -93,6 +108,26 @@ impl MetallicRoughness {
             roughness: unit(roughness),
             transmission: unit(transmission),
             ior: if ior.is_finite() { ior.max(1.0) } else { 1.5 },
+            specular: 1.0,
+            specular_color: Vec3::ONE,
+        }
+    }
+
+    /// The same material with `KHR_materials_specular`'s strength
+    /// (`specularFactor`, clamped to [0, 1]) and tint (`specularColorFactor`,
+    /// at least 0); NaN becomes the default (1, white).
+    pub fn with_specular(self, factor: f32, color: Vec3) -> Self {
+        let color = color
+            .to_array()
+            .map(|v| if v.is_nan() { 1.0 } else { v.max(0.0) });
+        Self {
+            specular: if factor.is_nan() {
+                1.0
+            } else {
+                factor.clamp(0.0, 1.0)
+            },
+            specular_color: color.into(),
+            ..self
         }
     }
 
@@ -105,6 +140,7 @@ impl MetallicRoughness {
     /// (textures), clamped as in [`MetallicRoughness::new`].
     pub fn with(&self, base_color: Vec3, metallic: f32, roughness: f32) -> Self {
         Self::new(base_color, metallic, roughness, self.transmission, self.ior)
+            .with_specular(self.specular, self.specular_color)
     }
 
     /// Base colour, metalness, perceptual roughness.
@@ -117,15 +153,42 @@ impl MetallicRoughness {
         self.ior
     }
 
-    /// The union of the lobes' flags.
+    /// The union of the flags of the lobes that have weight: a metal or
+    /// dielectric layer at roughness 0 is a delta lobe, so a smooth metal
+    /// is purely specular (no light sampling).
     pub(super) fn flags(&self) -> BsdfFlags {
-        let reflect = BsdfFlags::REFLECTION
-            .union(BsdfFlags::GLOSSY)
-            .union(BsdfFlags::DIFFUSE);
+        let mut flags = BsdfFlags::REFLECTION;
+        let dielectric = self.opaque_dielectric_weight();
+        if self.has_specular_layer() {
+            flags = flags.union(self.specular_lobe_flag());
+        }
+        if dielectric > 0.0 {
+            flags = flags.union(BsdfFlags::DIFFUSE);
+        }
         if self.glass_weight() > 0.0 {
-            reflect.union(BsdfFlags::TRANSMISSION)
+            flags = flags
+                .union(BsdfFlags::TRANSMISSION)
+                .union(BsdfFlags::GLOSSY);
+        }
+        flags
+    }
+
+    /// Whether the opaque specular lobe (metal or dielectric layer) has
+    /// weight.
+    fn has_specular_layer(&self) -> bool {
+        self.metallic > 0.0 || (self.opaque_dielectric_weight() > 0.0 && self.specular > 0.0)
+    }
+
+    /// Whether the opaque specular lobe is a delta (roughness 0).
+    fn is_smooth(&self) -> bool {
+        self.roughness == 0.0
+    }
+
+    fn specular_lobe_flag(&self) -> BsdfFlags {
+        if self.is_smooth() {
+            BsdfFlags::SPECULAR
         } else {
-            reflect
+            BsdfFlags::GLOSSY
         }
     }
 
@@ -143,10 +206,35 @@ impl MetallicRoughness {
         }
     }
 
-    /// Dielectric normal-incidence reflectance from the IOR.
-    fn f0_dielectric(&self) -> f32 {
+    /// The dielectric layer's Schlick Fresnel (F0, F90), per channel:
+    /// F0 from the IOR, tinted, clamped to 1 and scaled by the strength;
+    /// F90 the strength.
+    fn dielectric_fresnel(&self) -> (Vec3, f32) {
         let r = (self.ior - 1.0) / (self.ior + 1.0);
-        r * r
+        let f0 = (r * r * self.specular_color).min(Vec3::ONE) * self.specular;
+        (f0, self.specular)
+    }
+
+    /// The dielectric layer's Fresnel at `cos` (Schlick's weight `s5`).
+    fn dielectric_schlick(&self, s5: f32) -> Vec3 {
+        let (f0, f90) = self.dielectric_fresnel();
+        f0 + (Vec3::splat(f90) - f0) * s5
+    }
+
+    /// The metal's Fresnel, Schlick with F0 = base colour.
+    fn metal_schlick(&self, s5: f32) -> Vec3 {
+        self.base_color + (Vec3::ONE - self.base_color) * s5
+    }
+
+    /// The weight of the Lambert base (see the module docs); exactly 1
+    /// when the specular layer is off.
+    fn lambert_weight(&self, cos_o: f32, cos_i: f32) -> Vec3 {
+        let (f0, f90) = self.dielectric_fresnel();
+        let transmitted = Vec3::ONE - (f0 + (Vec3::splat(f90) - f0) / 21.0);
+        let pass_o = Vec3::ONE - self.dielectric_schlick(schlick_weight(cos_o));
+        let pass_i = Vec3::ONE - self.dielectric_schlick(schlick_weight(cos_i));
+        let w = pass_o * pass_i / transmitted;
+        Vec3::select(transmitted.cmpgt(Vec3::ZERO), w, Vec3::ZERO)
     }
 
     fn glass_weight(&self) -> f32 {
@@ -168,29 +256,35 @@ impl MetallicRoughness {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return glass;
         }
+        let w = self.opaque_dielectric_weight();
+        let lambert = self.lambert_weight(wo.z, wi.z) * self.base_color * FRAC_1_PI;
+        if self.is_smooth() || !self.has_specular_layer() {
+            // No glossy reflection: a delta layer (sampled only) or none.
+            return glass + w * lambert;
+        }
         let h = (wo + wi).normalize();
         let s5 = schlick_weight(wo.dot(h));
         let dist = self.distribution();
         let specular = dist.d(h) * dist.g2(wo, wi) / (4.0 * wo.z * wi.z);
-        let f0d = self.f0_dielectric();
-        let fd = f0d + (1.0 - f0d) * s5;
-        let fm = self.base_color + (Vec3::ONE - self.base_color) * s5;
-        let schlick = |cos: f32| f0d + (1.0 - f0d) * schlick_weight(cos);
-        let average = f0d + (1.0 - f0d) / 21.0;
-        let lambert = (1.0 - schlick(wo.z)) * (1.0 - schlick(wi.z)) / (1.0 - average);
-        let dielectric = Vec3::splat(fd * specular) + lambert * self.base_color * FRAC_1_PI;
-        glass + self.metallic * fm * specular + self.opaque_dielectric_weight() * dielectric
+        let dielectric = self.dielectric_schlick(s5) * specular + lambert;
+        glass + self.metallic * self.metal_schlick(s5) * specular + w * dielectric
+    }
+
+    /// The delta layer's reflectance at `wo` (roughness 0): the metal's
+    /// and the dielectric layer's Fresnel at cos θo.
+    fn smooth_reflectance(&self, cos_o: f32) -> Vec3 {
+        let s5 = schlick_weight(cos_o);
+        self.metallic * self.metal_schlick(s5)
+            + self.opaque_dielectric_weight() * self.dielectric_schlick(s5)
     }
 
     /// The lobe probabilities at `wo`; `None` when nothing scatters.
     fn choice(&self, wo: Vec3) -> Option<LobeChoice> {
         let s5 = schlick_weight(wo.z.abs());
-        let f0d = self.f0_dielectric();
-        let fd = f0d + (1.0 - f0d) * s5;
-        let fm = self.base_color + (Vec3::ONE - self.base_color) * s5;
+        let fd = self.dielectric_schlick(s5);
         let w = self.opaque_dielectric_weight();
-        let specular = self.metallic * luminance(fm) + w * fd;
-        let diffuse = w * (1.0 - fd) * luminance(self.base_color);
+        let specular = self.metallic * luminance(self.metal_schlick(s5)) + w * luminance(fd);
+        let diffuse = w * luminance((Vec3::ONE - fd) * self.base_color);
         let glass = self.glass_weight();
         let total = specular + diffuse + glass;
         (total > 0.0 && total.is_finite()).then(|| LobeChoice {
@@ -214,10 +308,14 @@ impl MetallicRoughness {
         if up_o.z <= 0.0 || up_i.z <= 0.0 {
             return glass;
         }
+        let diffuse = glass + c.diffuse * up_i.z * FRAC_1_PI;
+        if self.is_smooth() || c.specular <= 0.0 {
+            return diffuse;
+        }
         let h = (up_o + up_i).normalize();
         let dist = self.distribution();
         let specular = dist.d(h) * dist.g1(up_o) / (4.0 * up_o.z);
-        glass + c.specular * specular + c.diffuse * up_i.z * FRAC_1_PI
+        diffuse + c.specular * specular
     }
 
     /// Picks a lobe with `u1`, samples it with `u2` (the glass reuses the
@@ -226,7 +324,11 @@ impl MetallicRoughness {
         let c = self.choice(wo)?;
         let sign = if wo.z < 0.0 { -1.0 } else { 1.0 };
         let up_o = Vec3::new(wo.x, wo.y, wo.z.abs());
-        let wi = if u1 < c.specular {
+        if u1 < c.specular && self.is_smooth() {
+            let weight = self.smooth_reflectance(up_o.z) / c.specular;
+            return delta_sample(reflect_local(wo), weight, c.specular, MIRROR_FLAGS);
+        }
+        let (wi, lobe) = if u1 < c.specular {
             let h = self.distribution().sample_visible_normal(up_o, u2);
             let cos_oh = up_o.dot(h);
             if cos_oh <= 0.0 {
@@ -238,19 +340,19 @@ impl MetallicRoughness {
                 // lobe accounts for it).
                 return None;
             }
-            Vec3::new(w.x, w.y, sign * w.z)
+            (Vec3::new(w.x, w.y, sign * w.z), BsdfFlags::GLOSSY)
         } else if u1 < c.specular + c.diffuse || c.glass <= 0.0 {
             let w = square_to_cosine_hemisphere(u2);
-            Vec3::new(w.x, w.y, sign * w.z)
+            (Vec3::new(w.x, w.y, sign * w.z), BsdfFlags::DIFFUSE)
         } else {
             let u = ((u1 - c.specular - c.diffuse) / c.glass).clamp(0.0, 1.0 - f32::EPSILON);
-            self.glass().sample(wo, u, u2)?.wi
+            (self.glass().sample(wo, u, u2)?.wi, BsdfFlags::GLOSSY)
         };
         let pdf = self.pdf(wo, wi);
         if !(pdf > 0.0 && pdf.is_finite()) {
             return None;
         }
-        let lobe = if wi.z * wo.z < 0.0 {
+        let side = if wi.z * wo.z < 0.0 {
             BsdfFlags::TRANSMISSION
         } else {
             BsdfFlags::REFLECTION
@@ -259,7 +361,7 @@ impl MetallicRoughness {
             wi,
             f: self.f(wo, wi),
             pdf,
-            flags: lobe.union(BsdfFlags::GLOSSY),
+            flags: side.union(lobe),
         })
     }
 

@@ -320,7 +320,8 @@ pub enum BsdfDesc {
     Black,
     /// The glTF 2.0 metallic-roughness model (Lambert base, GGX specular
     /// with Schlick Fresnel, mixed by metalness) with
-    /// `KHR_materials_transmission` and `KHR_materials_ior`.
+    /// `KHR_materials_transmission`, `KHR_materials_ior` and
+    /// `KHR_materials_specular`.
     MetallicRoughness {
         /// Base colour (linear), per channel in [0, 1].
         base_color: Vec3,
@@ -332,6 +333,12 @@ pub enum BsdfDesc {
         transmission: f32,
         /// Index of refraction (1.5 by default).
         ior: f32,
+        /// Strength of the dielectric specular layer (`specularFactor`, 1 by
+        /// default; 0 leaves a pure Lambert base).
+        specular: f32,
+        /// Tint of the dielectric layer's F0 (`specularColorFactor`, white
+        /// by default).
+        specular_color: Vec3,
     },
 }
 

@@ -1,8 +1,10 @@
 //! glTF metallic-roughness materials, read as what they are:
 //! [`BsdfDesc::MetallicRoughness`] (the renderer's glTF BSDF: Lambert base,
 //! GGX specular with Schlick Fresnel, mixed by metalness), with
-//! `KHR_materials_transmission` (`transmissionFactor`) and
-//! `KHR_materials_ior` (1.5 by default), and every texture in its slot.
+//! `KHR_materials_transmission` (`transmissionFactor`),
+//! `KHR_materials_ior` (1.5 by default) and `KHR_materials_specular`
+//! (`specularFactor`, `specularColorFactor`; its two textures are reported
+//! and not read), and every texture in its slot.
 //!
 //! A factor that multiplies a texture becomes the texture's scale; the
 //! slot's scale is one number, so a non-grey colour factor is averaged (and
@@ -42,12 +44,24 @@ pub(super) fn read_material(
             "the transmission texture is not read; its factor is used",
         )?;
     }
+    let specular = m.specular();
+    if specular
+        .as_ref()
+        .is_some_and(|s| s.specular_texture().is_some() || s.specular_color_texture().is_some())
+    {
+        ctx.warn(
+            "specularTexture",
+            "the KHR_materials_specular textures are not read; their factors are used",
+        )?;
+    }
     let bsdf = BsdfDesc::MetallicRoughness {
         base_color: base,
         metallic: metal,
         roughness: rough,
         transmission: transmission.map_or(0.0, |t| t.transmission_factor()),
         ior: m.ior().unwrap_or(1.5),
+        specular: specular.as_ref().map_or(1.0, |s| s.specular_factor()),
+        specular_color: specular.map_or(Vec3::ONE, |s| Vec3::from(s.specular_color_factor())),
     };
     let strength = m.emissive_strength().unwrap_or(1.0);
     let emissive = Vec3::from(m.emissive_factor()) * strength;

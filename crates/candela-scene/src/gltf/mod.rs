@@ -39,6 +39,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_emissive_strength",
     "KHR_materials_transmission",
     "KHR_materials_ior",
+    "KHR_materials_specular",
 ];
 
 /// The file being loaded and the warnings so far.
