@@ -195,7 +195,12 @@ fn a_constant_opacity_lets_its_complement_through() {
     // glTF BLEND with a constant alpha 0.25: open with probability 0.75.
     let mut blended = black();
     blended.textures.opacity_constant = Some(0.25);
-    assert_image_mean("constant blend", &build(&view_filling(blended), true), 1, 0.75);
+    assert_image_mean(
+        "constant blend",
+        &build(&view_filling(blended), true),
+        1,
+        0.75,
+    );
     // glTF MASK with the alpha below the cutoff: not there at all (exactly
     // the sky, so the spread is 0 and the bound is rounding).
     let mut masked = black();
