@@ -94,6 +94,9 @@ impl Geometry {
     /// Flattens the instances and collects the spheres of `desc`.
     pub fn from_desc(desc: &SceneDesc) -> Result<Self, GeometryError> {
         let mut triangles = TriangleData::default();
+        // Tangents generated from the UVs, once per mesh, for meshes drawn
+        // with a normal map that came without any.
+        let mut generated: Vec<Option<Vec<Vec4>>> = vec![None; desc.meshes.len()];
         for (i, inst) in desc.instances.iter().enumerate() {
             let mesh = desc
                 .meshes
@@ -103,7 +106,18 @@ impl Geometry {
                     mesh: inst.mesh,
                     meshes: desc.meshes.len(),
                 })?;
-            triangles.add_instance(mesh, inst, i)?;
+            let material = inst.material.unwrap_or(mesh.material);
+            let normal_mapped = desc
+                .materials
+                .get(material)
+                .is_some_and(|m| m.textures.normal.is_some());
+            let tangents: &[Vec4] = if mesh.tangents.is_empty() && normal_mapped {
+                generated[inst.mesh]
+                    .get_or_insert_with(|| mesh.generated_tangents().unwrap_or_default())
+            } else {
+                &mesh.tangents
+            };
+            triangles.add_instance(mesh, tangents, inst, i)?;
         }
         let spheres: Vec<SphereData> = desc
             .spheres
@@ -185,11 +199,13 @@ impl Geometry {
 
 impl TriangleData {
     /// Appends the triangles of `mesh` placed by `inst` (instance number
-    /// `number`, for messages). An identity placement copies the mesh's
-    /// values bit for bit.
+    /// `number`, for messages), with `tangents` for its normals (the mesh's
+    /// own or generated; ignored unless one per normal). An identity
+    /// placement copies the mesh's values bit for bit.
     fn add_instance(
         &mut self,
         mesh: &MeshDesc,
+        tangents: &[Vec4],
         inst: &InstanceDesc,
         number: usize,
     ) -> Result<(), GeometryError> {
@@ -197,7 +213,7 @@ impl TriangleData {
         let base_p = self.positions.len() as u32;
         let base_n = self.normals.len() as u32;
         let base_uv = self.uvs.len() as u32;
-        let with_tangents = !mesh.tangents.is_empty() && mesh.tangents.len() == mesh.normals.len();
+        let with_tangents = !tangents.is_empty() && tangents.len() == mesh.normals.len();
         if with_tangents {
             self.tangents.resize(base_n as usize, Vec4::ZERO);
         }
@@ -205,7 +221,7 @@ impl TriangleData {
             self.positions.extend_from_slice(&mesh.positions);
             self.normals.extend_from_slice(&mesh.normals);
             if with_tangents {
-                self.tangents.extend_from_slice(&mesh.tangents);
+                self.tangents.extend_from_slice(tangents);
             }
         } else {
             let linear = Mat3::from_mat4(m);
@@ -224,7 +240,7 @@ impl TriangleData {
                 // handedness so that w · (N × T) is still the placed
                 // bitangent (N × T turns with det, the bitangent does not).
                 let sign = det.signum();
-                self.tangents.extend(mesh.tangents.iter().map(|&t| {
+                self.tangents.extend(tangents.iter().map(|&t| {
                     match (linear * t.truncate()).try_normalize() {
                         Some(xyz) if t != Vec4::ZERO => xyz.extend(t.w * sign),
                         _ => Vec4::ZERO,

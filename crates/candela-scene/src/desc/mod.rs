@@ -18,6 +18,7 @@
 
 mod camera;
 mod material;
+mod tangents;
 
 pub use camera::{CameraDesc, Projection};
 pub use material::{
