@@ -13,7 +13,10 @@
 //!   the texture at its sampled points without bias and shadow rays pass
 //!   the cut-outs exactly as bounce rays do;
 //! - **a flat normal map** ((0.5, 0.5, 1) everywhere) renders the image bit
-//!   for bit as without one.
+//!   for bit as without one, with the triangles' own tangent frames and
+//!   with per-vertex tangents alike;
+//! - **a constant opacity** (glTF's alpha without a texture): 0.25 blended
+//!   lets 0.75 of the sky through, below a mask's cutoff all of it.
 //!
 //! Means are checked against independent batches (4.5 standard errors,
 //! ~5e-4 two-sided with 15 degrees of freedom).
@@ -188,6 +191,25 @@ fn cut_outs_let_the_open_fraction_through() {
 }
 
 #[test]
+fn a_constant_opacity_lets_its_complement_through() {
+    // glTF BLEND with a constant alpha 0.25: open with probability 0.75.
+    let mut blended = black();
+    blended.textures.opacity_constant = Some(0.25);
+    assert_image_mean(
+        "constant blend",
+        &build(&view_filling(blended), true),
+        1,
+        0.75,
+    );
+    // glTF MASK with the alpha below the cutoff: not there at all (exactly
+    // the sky, so the spread is 0 and the bound is rounding).
+    let mut masked = black();
+    masked.textures.opacity_constant = Some(0.3);
+    masked.textures.opacity_cutoff = Some(0.5);
+    assert_image_mean("constant mask", &build(&view_filling(masked), true), 1, 1.0);
+}
+
+#[test]
 fn a_textured_lamp_through_a_cut_out_screen_agrees_between_estimators() {
     let dir = candela_testkit::TempDir::new("textured-lamp");
     let glow = dir.join("glow.exr");
@@ -259,20 +281,22 @@ fn a_flat_normal_map_renders_bit_for_bit_as_none() {
     );
     let mut mapped = plain.clone();
     mapped.textures.normal = Some(TextureRef::new(&flat, ColorSpace::Linear));
-    let render_with = |m: MaterialDesc| {
+    let render_with = |m: MaterialDesc, tangents: bool| {
         let h = 30f32.to_radians().tan();
-        let desc = scene_of(
-            vec![quad(
-                Vec3::new(-h, -h, -1.3),
-                Vec3::new(2.0 * h, 0.0, -0.4),
-                Vec3::Y * 2.0 * h,
-                0,
-            )],
-            vec![m],
+        let mut q = quad(
+            Vec3::new(-h, -h, -1.3),
+            Vec3::new(2.0 * h, 0.0, -0.4),
+            Vec3::Y * 2.0 * h,
+            0,
         );
-        render_batch(&build(&desc, true), 5, 3)
+        if tangents {
+            // Any frame: a flat texel must ignore it.
+            q.tangents = vec![Vec3::new(0.3, 0.9, 0.1).normalize().extend(-1.0)];
+        }
+        render_batch(&build(&scene_of(vec![q], vec![m]), true), 5, 3)
     };
-    let (a, b) = (render_with(plain), render_with(mapped));
+    let a = render_with(plain, false);
     assert!(a.pixels().iter().any(|p| p[0] > 0.0), "the quad is lit");
-    assert_eq!(a.pixels(), b.pixels());
+    assert_eq!(a.pixels(), render_with(mapped.clone(), false).pixels());
+    assert_eq!(a.pixels(), render_with(mapped, true).pixels());
 }

@@ -13,7 +13,7 @@ use crate::geometry::Ray;
 use crate::light::AreaShape;
 use crate::shape::{self, PrimKind, PrimRef, SurfaceHit};
 use candela_scene::{InstanceDesc, MeshDesc, SceneDesc};
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 /// All triangles of the scene, every instance flattened into global arrays
 /// in world space (triangle index = [`PrimRef::index`] of a triangle).
@@ -27,6 +27,11 @@ pub struct TriangleData {
     pub normals: Vec<Vec3>,
     /// Normal indices per triangle; `u32::MAX` in the first slot means none.
     pub normal_indices: Vec<[u32; 3]>,
+    /// Per-vertex tangents (xyz unit, w = ±1 handedness), indexed like
+    /// `normals` by `normal_indices`. Shorter than `normals` (or zero at a
+    /// vertex) where a mesh has none: the normal map then follows the
+    /// triangle's own dp/du.
+    pub tangents: Vec<Vec4>,
     /// Texture coordinates.
     pub uvs: Vec<Vec2>,
     /// UV indices per triangle; `u32::MAX` in the first slot means none.
@@ -89,6 +94,9 @@ impl Geometry {
     /// Flattens the instances and collects the spheres of `desc`.
     pub fn from_desc(desc: &SceneDesc) -> Result<Self, GeometryError> {
         let mut triangles = TriangleData::default();
+        // Tangents generated from the UVs, once per mesh, for meshes drawn
+        // with a normal map that came without any.
+        let mut generated: Vec<Option<Vec<Vec4>>> = vec![None; desc.meshes.len()];
         for (i, inst) in desc.instances.iter().enumerate() {
             let mesh = desc
                 .meshes
@@ -98,7 +106,18 @@ impl Geometry {
                     mesh: inst.mesh,
                     meshes: desc.meshes.len(),
                 })?;
-            triangles.add_instance(mesh, inst, i)?;
+            let material = inst.material.unwrap_or(mesh.material);
+            let normal_mapped = desc
+                .materials
+                .get(material)
+                .is_some_and(|m| m.textures.normal.is_some());
+            let tangents: &[Vec4] = if mesh.tangents.is_empty() && normal_mapped {
+                generated[inst.mesh]
+                    .get_or_insert_with(|| mesh.generated_tangents().unwrap_or_default())
+            } else {
+                &mesh.tangents
+            };
+            triangles.add_instance(mesh, tangents, inst, i)?;
         }
         let spheres: Vec<SphereData> = desc
             .spheres
@@ -180,11 +199,13 @@ impl Geometry {
 
 impl TriangleData {
     /// Appends the triangles of `mesh` placed by `inst` (instance number
-    /// `number`, for messages). An identity placement copies the mesh's
-    /// values bit for bit.
+    /// `number`, for messages), with `tangents` for its normals (the mesh's
+    /// own or generated; ignored unless one per normal). An identity
+    /// placement copies the mesh's values bit for bit.
     fn add_instance(
         &mut self,
         mesh: &MeshDesc,
+        tangents: &[Vec4],
         inst: &InstanceDesc,
         number: usize,
     ) -> Result<(), GeometryError> {
@@ -192,9 +213,16 @@ impl TriangleData {
         let base_p = self.positions.len() as u32;
         let base_n = self.normals.len() as u32;
         let base_uv = self.uvs.len() as u32;
+        let with_tangents = !tangents.is_empty() && tangents.len() == mesh.normals.len();
+        if with_tangents {
+            self.tangents.resize(base_n as usize, Vec4::ZERO);
+        }
         if m == Mat4::IDENTITY {
             self.positions.extend_from_slice(&mesh.positions);
             self.normals.extend_from_slice(&mesh.normals);
+            if with_tangents {
+                self.tangents.extend_from_slice(tangents);
+            }
         } else {
             let linear = Mat3::from_mat4(m);
             let det = linear.determinant();
@@ -207,6 +235,18 @@ impl TriangleData {
                 .extend(mesh.positions.iter().map(|&p| m.transform_point3(p)));
             self.normals
                 .extend(mesh.normals.iter().map(|&n| (normal_m * n).normalize_or(n)));
+            if with_tangents {
+                // A tangent is a direction; a mirroring placement flips the
+                // handedness so that w · (N × T) is still the placed
+                // bitangent (N × T turns with det, the bitangent does not).
+                let sign = det.signum();
+                self.tangents.extend(tangents.iter().map(|&t| {
+                    match (linear * t.truncate()).try_normalize() {
+                        Some(xyz) if t != Vec4::ZERO => xyz.extend(t.w * sign),
+                        _ => Vec4::ZERO,
+                    }
+                }));
+            }
         }
         self.uvs.extend_from_slice(&mesh.uvs);
         let material = inst.material.unwrap_or(mesh.material) as u32;
@@ -231,6 +271,26 @@ impl TriangleData {
         self.triangles[i].map(|v| self.positions[v as usize])
     }
 
+    /// The tangent interpolated at barycentrics `b` of a triangle of normal
+    /// indices `ni`: xyz as interpolated (not normalised: the shading frame
+    /// orthogonalises it), w the sign of the interpolated handedness; `None`
+    /// when any corner has no tangent.
+    fn tangent_at(&self, ni: [u32; 3], b: [f32; 3]) -> Option<Vec4> {
+        if ni[0] == NONE {
+            return None;
+        }
+        let mut sum = Vec4::ZERO;
+        for (k, w) in ni.into_iter().zip(b) {
+            let t = *self.tangents.get(k as usize)?;
+            if t == Vec4::ZERO {
+                return None;
+            }
+            sum += t * w;
+        }
+        let w = if sum.w < 0.0 { -1.0 } else { 1.0 };
+        Some(sum.truncate().extend(w))
+    }
+
     /// The unit normal on the side triangle `i` emits toward: its authored
     /// normals' side when it has them (the files' winding does not always
     /// agree with them), else its winding's.
@@ -249,7 +309,7 @@ impl TriangleData {
 fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
     let wo = -ray.dir.normalize();
     let i = hit.prim.index() as usize;
-    let (p, p_error, ng_raw, ns_raw, uv, material) = match hit.prim.kind() {
+    let (p, p_error, ng_raw, ns_raw, uv, tangent, material) = match hit.prim.kind() {
         PrimKind::Triangle => {
             let tris = &geometry.triangles;
             let [v0, v1, v2] = tris.corners(i);
@@ -263,6 +323,7 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
                 let n = ni.map(|k| tris.normals[k as usize]);
                 (b[0] * n[0] + b[1] * n[1] + b[2] * n[2]).normalize_or(ng)
             };
+            let tangent = tris.tangent_at(ni, b);
             let ti = tris.uv_indices[i];
             let uv = if ti[0] == NONE {
                 Vec2::new(hit.b1, hit.b2)
@@ -270,13 +331,13 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
                 let t = ti.map(|k| tris.uvs[k as usize]);
                 b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
             };
-            (p, p_error, ng, ns, uv, tris.material[i])
+            (p, p_error, ng, ns, uv, tangent, tris.material[i])
         }
         PrimKind::Sphere => {
             let s = &geometry.spheres[i];
             let sp = shape::sphere_surface_point(s.center, s.radius, ray, hit.t);
             let uv = Vec2::new(hit.b1, hit.b2);
-            (sp.p, sp.p_error, sp.n, sp.n, uv, s.material)
+            (sp.p, sp.p_error, sp.n, sp.n, uv, None, s.material)
         }
     };
     // Emitters emit on the side their authored (shading) normals point to;
@@ -293,6 +354,7 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
         ng,
         ns: ns_raw,
         uv,
+        tangent,
         material,
         prim: hit.prim,
         wo,

@@ -39,7 +39,17 @@ pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Fr
     let (dpdu, dpdv) = uv_derivatives(scene, hit);
     let mut n = hit.ns;
     if let Some(map) = &t.normal {
-        n = normal_map::mapped_normal(n, dpdu, dpdv, map.image.lookup(hit.uv), map.scale);
+        // With per-vertex tangents, (T, w · N × T) is the frame the map was
+        // baked in; mapped_normal orthogonalises T against N and turns the
+        // bitangent to the side of w · N × T, which is that frame exactly.
+        let (tu, tv) = match hit.tangent {
+            Some(tangent) => {
+                let tu = tangent.truncate();
+                (tu, tangent.w * n.cross(tu))
+            }
+            None => (dpdu, dpdv),
+        };
+        n = normal_map::mapped_normal(n, tu, tv, map.image.lookup(hit.uv), map.scale);
     }
     if let Some(bump) = &t.bump {
         let (w, h) = bump.image.size();

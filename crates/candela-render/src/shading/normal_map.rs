@@ -15,10 +15,13 @@
 //! keep their handedness). +X right and +Y up in the image, the OpenGL /
 //! glTF / Blender convention (Candela's `v` runs bottom to top). The slot's
 //! scale multiplies X and Y (glTF's `normalTexture.scale`). dp/du and dp/dv
-//! are the triangle's own (pbrt's, from its positions and UVs): glTF
-//! `TANGENT` attributes are not stored (reported by the loader), so every
-//! mesh gets tangents generated from its UVs; a triangle without UVs uses
-//! its barycentric parametrisation.
+//! are the triangle's own (pbrt's, from its positions and UVs; a triangle
+//! without UVs uses its barycentric parametrisation) unless the mesh has
+//! per-vertex tangents (glTF `TANGENT`, or generated smooth from the UVs for
+//! a normal-mapped mesh): `shading_frame` then passes the interpolated T as
+//! dp/du and w · N × T as dp/dv, which this construction turns into exactly
+//! the frame (T ⊥ N, w · N × T) a MikkTSpace baker used, without the
+//! per-triangle frame's facets on smooth meshes.
 //!
 //! # The shading-frame rule (no leaks)
 //!

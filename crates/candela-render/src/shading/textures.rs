@@ -51,6 +51,9 @@ pub struct MaterialTextures {
     /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
     /// fraction.
     pub opacity_cutoff: Option<f32>,
+    /// The opacity where there is no opacity texture (glTF's constant
+    /// alpha), read through `opacity_cutoff` like a texel.
+    pub opacity_constant: Option<f32>,
 }
 
 impl MaterialTextures {
@@ -63,6 +66,7 @@ impl MaterialTextures {
     ) -> (Self, Vec<TextureSlot>) {
         let mut textures = Self {
             opacity_cutoff: slots.opacity_cutoff,
+            opacity_constant: slots.opacity_constant,
             ..Self::default()
         };
         let mut unusable = Vec::new();
@@ -196,18 +200,22 @@ impl MaterialTextures {
         self.emission.as_ref().map(|t| t.color(uv).max(Vec3::ZERO))
     }
 
-    /// The opacity at `uv` in [0, 1]: 1 without an opacity texture; with a
-    /// cutoff, 1 where the value reaches it and 0 below.
+    /// The opacity at `uv` in [0, 1]: the texture's value, else the
+    /// constant, else 1; with a cutoff, 1 where the value reaches it and 0
+    /// below.
     pub fn opacity(&self, uv: Vec2) -> f32 {
-        let Some(t) = &self.opacity else {
-            return 1.0;
+        let value = match (&self.opacity, self.opacity_constant) {
+            (Some(t), _) => {
+                let channel = if t.image.has_alpha() {
+                    ALPHA_CHANNEL
+                } else {
+                    DEFAULT_CHANNEL
+                };
+                t.value(uv, channel)
+            }
+            (None, Some(constant)) => constant,
+            (None, None) => return 1.0,
         };
-        let channel = if t.image.has_alpha() {
-            ALPHA_CHANNEL
-        } else {
-            DEFAULT_CHANNEL
-        };
-        let value = t.value(uv, channel);
         match self.opacity_cutoff {
             Some(cutoff) => f32::from(u8::from(value >= cutoff)),
             None if value.is_nan() => 1.0,
@@ -217,7 +225,7 @@ impl MaterialTextures {
 
     /// Whether the material has cut-outs at all.
     pub fn has_opacity(&self) -> bool {
-        self.opacity.is_some()
+        self.opacity.is_some() || self.opacity_constant.is_some()
     }
 }
 

@@ -3,7 +3,7 @@
 //! by materials and integrators, so it lives here, below both.
 
 use super::{offset_ray_origin, PrimRef};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// Everything the integrators need to know about a hit point.
 #[derive(Clone, Copy, Debug)]
@@ -20,6 +20,10 @@ pub struct SurfaceHit {
     pub ns: Vec3,
     /// Texture coordinates.
     pub uv: Vec2,
+    /// The mesh's per-vertex tangent interpolated here (xyz not normalised,
+    /// w = ±1 handedness), when the mesh has tangents; normal maps use it
+    /// instead of the triangle's dp/du.
+    pub tangent: Option<Vec4>,
     /// Material index.
     pub material: u32,
     /// The primitive hit.

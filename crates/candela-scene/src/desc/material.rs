@@ -177,6 +177,11 @@ pub struct TextureSlots {
     /// `Some(c)` as a mask (opaque where the value is at least c, cut out
     /// below: glTF `MASK` with its `alphaCutoff`).
     pub opacity_cutoff: Option<f32>,
+    /// A constant opacity in [0, 1] for a material whose opacity slot has
+    /// no texture (glTF `BLEND`/`MASK` with only a base colour factor's
+    /// alpha); read like the texture's value, `opacity_cutoff` included.
+    /// Ignored when the slot has a texture.
+    pub opacity_constant: Option<f32>,
 }
 
 impl TextureSlots {

@@ -18,13 +18,14 @@
 
 mod camera;
 mod material;
+mod tangents;
 
 pub use camera::{CameraDesc, Projection};
 pub use material::{
     BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, TextureRef, TextureSlot, TextureSlots,
 };
 
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
 
 /// A position in a source file (1-based line and column).
@@ -95,6 +96,12 @@ pub struct MeshDesc {
     pub normals: Vec<Vec3>,
     /// Per-triangle corner indices into `normals`; empty when there are none.
     pub normal_indices: Vec<[u32; 3]>,
+    /// Per-vertex tangents for normal maps, as glTF's `TANGENT` defines
+    /// them: xyz a unit tangent along +u in the mesh's own space, w = ±1
+    /// the handedness (bitangent = w · cross(normal, tangent)). Empty when
+    /// the file had none; else one per entry of `normals`, indexed by
+    /// `normal_indices` (a tangent belongs to its vertex's normal).
+    pub tangents: Vec<Vec4>,
     /// Texture coordinates, if the file had any.
     pub uvs: Vec<Vec2>,
     /// Per-triangle corner indices into `uvs`; empty when there are none.

@@ -235,6 +235,22 @@ pub(super) fn vec3(
     )
 }
 
+/// A `VEC4` float attribute (TANGENT).
+pub(super) fn vec4(
+    ctx: &Ctx,
+    buffers: &Buffers,
+    acc: &gltf::Accessor,
+) -> Result<Vec<glam::Vec4>, LoadError> {
+    read(
+        ctx,
+        buffers,
+        acc,
+        Dimensions::Vec4,
+        &[DataType::F32],
+        |b, ty| glam::Vec4::from_array([0, 1, 2, 3].map(|k| component(b, ty, k))),
+    )
+}
+
 /// A `VEC2` texture-coordinate attribute: float or normalised 8/16-bit.
 pub(super) fn vec2(
     ctx: &Ctx,

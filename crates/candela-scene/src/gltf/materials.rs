@@ -12,7 +12,9 @@
 //! slot with `alphaCutoff` (0.5 by default) as the slot's cutoff; `BLEND`
 //! puts it there as a coverage fraction (stochastic opacity: a point of
 //! alpha a is kept with probability a, which averages to the blended look
-//! without ordering transparent surfaces). Occlusion textures are not read:
+//! without ordering transparent surfaces). Without a base colour texture
+//! the factor's alpha is a constant opacity (`opacity_constant`), read the
+//! same way. Occlusion textures are not read:
 //! a path tracer computes occlusion itself.
 
 use super::accessors::Buffers;
@@ -144,14 +146,11 @@ pub(super) fn read_material(
                     alpha,
                     Some(3),
                 )?;
-                if mode == AlphaMode::Mask {
-                    desc.textures.opacity_cutoff = Some(m.alpha_cutoff().unwrap_or(0.5));
-                }
             } else if alpha < 1.0 {
-                ctx.warn(
-                    "alphaMode",
-                    "a constant alpha without a texture is drawn opaque",
-                )?;
+                desc.textures.opacity_constant = Some(alpha.clamp(0.0, 1.0));
+            }
+            if mode == AlphaMode::Mask {
+                desc.textures.opacity_cutoff = Some(m.alpha_cutoff().unwrap_or(0.5));
             }
         }
     }

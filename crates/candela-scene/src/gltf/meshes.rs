@@ -100,11 +100,15 @@ pub(super) fn read_primitive(
             .collect();
         desc.uv_indices = triangles.clone();
     }
-    if prim.get(&Semantic::Tangents).is_some() {
-        ctx.warn(
-            "TANGENT",
-            "tangents are not stored; a normal map's tangent frame follows the UVs",
-        )?;
+    if let Some(acc) = attribute(&Semantic::Tangents)? {
+        if desc.normals.is_empty() {
+            ctx.warn(
+                "TANGENT",
+                "tangents without NORMAL are ignored (the spec requires both)",
+            )?;
+        } else {
+            desc.tangents = tangents(ctx, buffers, &acc)?;
+        }
     }
     for (sem, _) in prim.attributes() {
         if matches!(sem, Semantic::Joints(_) | Semantic::Weights(_)) {
@@ -134,4 +138,21 @@ fn triangles_of(ctx: &Ctx, at: &str, idx: &[u32]) -> Result<Vec<[u32; 3]>, LoadE
         ));
     }
     Ok(idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect())
+}
+
+/// A `TANGENT` accessor: xyz normalised (exporters round), w the
+/// handedness sign. A zero or non-finite tangent becomes zero, which the
+/// renderer reads as "no tangent here" (it falls back to the UVs' frame).
+fn tangents(
+    ctx: &Ctx,
+    buffers: &Buffers,
+    acc: &gltf::Accessor,
+) -> Result<Vec<glam::Vec4>, LoadError> {
+    Ok(accessors::vec4(ctx, buffers, acc)?
+        .into_iter()
+        .map(|t| match t.truncate().try_normalize() {
+            Some(xyz) if t.w.is_finite() => xyz.extend(if t.w < 0.0 { -1.0 } else { 1.0 }),
+            _ => glam::Vec4::ZERO,
+        })
+        .collect())
 }
