@@ -12,7 +12,10 @@ use super::ThreadContext;
 use crate::bsdf::Bsdf;
 use crate::geometry::{Frame, Ray};
 use crate::light::LightSample;
-use crate::sampling::warp::{square_to_uniform_hemisphere, uniform_hemisphere_pdf};
+use crate::sampling::warp::{
+    square_to_uniform_hemisphere, square_to_uniform_sphere, uniform_hemisphere_pdf,
+    uniform_sphere_pdf,
+};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::shading::scatter_allowed;
@@ -152,7 +155,10 @@ pub fn estimate_direct<R: PathRecorder>(
 /// CS184's uniform hemisphere estimate of direct light: `samples` rays in
 /// uniform directions over the hemisphere on the viewer's side, each adding
 /// the emission it finds (an emitter's front face, or the lights at
-/// infinity when it escapes) times `f · |cos| / pdf`.
+/// infinity when it escapes) times `f · |cos| / pdf`. A BSDF that transmits
+/// (rough glass) also receives direct light from the other side, which no
+/// other strategy of this mode counts (emitters found by BSDF rays weigh 0
+/// here): its rays cover the whole sphere instead.
 #[allow(clippy::too_many_arguments)]
 fn estimate_hemisphere<R: PathRecorder>(
     scene: &Scene,
@@ -169,13 +175,19 @@ fn estimate_hemisphere<R: PathRecorder>(
     }
     let wo = frame.to_local(hit.wo);
     let scale = 1.0 / samples as f32;
+    let whole_sphere = bsdf.flags().is_transmission();
     let mut sum = Vec3::ZERO;
     for _ in 0..samples {
-        let local = square_to_uniform_hemisphere(sampler.next_2d());
-        let pdf = uniform_hemisphere_pdf(local);
-        // The frame is not flipped toward the viewer (dielectrics need its
-        // side), so take the hemisphere wo lies in.
-        let wi_local = if wo.z < 0.0 { -local } else { local };
+        let (wi_local, pdf) = if whole_sphere {
+            let w = square_to_uniform_sphere(sampler.next_2d());
+            (w, uniform_sphere_pdf(w))
+        } else {
+            let local = square_to_uniform_hemisphere(sampler.next_2d());
+            // The frame is not flipped toward the viewer (dielectrics need
+            // its side), so take the hemisphere wo lies in.
+            let w = if wo.z < 0.0 { -local } else { local };
+            (w, uniform_hemisphere_pdf(local))
+        };
         let f = bsdf.f(wo, wi_local);
         let wi = frame.to_world(wi_local);
         let mut event = HemisphereEvent {
@@ -188,7 +200,7 @@ fn estimate_hemisphere<R: PathRecorder>(
             value: Vec3::ZERO,
             scale,
         };
-        if f == Vec3::ZERO || wi.dot(hit.ng) <= 0.0 {
+        if f == Vec3::ZERO || !scatter_allowed(hit.ng, wi, wo, wi_local) {
             rec.hemisphere_ray(&event);
             continue;
         }
