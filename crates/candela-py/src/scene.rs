@@ -70,28 +70,35 @@ impl PyScene {
         }
     }
 
+    /// The render scene for `settings`, built once per distinct set of
+    /// scene options. The cache's lock is only ever taken with the GIL
+    /// released: a thread holding it while waiting for the GIL and another
+    /// holding the GIL while waiting for it would deadlock (two Dask worker
+    /// threads rendering the same scene did).
     fn built(&self, py: Python<'_>, settings: &Settings) -> PyResult<Arc<Scene>> {
         let k = key(settings);
-        let mut slot = self
-            .built
-            .lock()
-            .map_err(|_| PyRuntimeError::new_err("scene cache poisoned"))?;
-        if let Some((have, scene)) = slot.as_ref() {
-            if *have == k {
-                return Ok(scene.clone());
+        py.detach(|| {
+            let mut slot = self
+                .built
+                .lock()
+                .map_err(|_| PyRuntimeError::new_err("scene cache poisoned"))?;
+            if let Some((have, scene)) = slot.as_ref() {
+                if *have == k {
+                    return Ok(scene.clone());
+                }
             }
-        }
-        let desc = self.desc.clone();
-        let opts = settings.scene_options().map_err(value_error)?;
-        let scene = py
-            .detach(|| settings.with_threads(|| Scene::build(&desc, &opts)))
-            .map_err(value_error)?
-            .map_err(|e| {
-                PyValueError::new_err(format!("cannot render {}: {e}", desc.source.display()))
-            })?;
-        let scene = Arc::new(scene);
-        *slot = Some((k, scene.clone()));
-        Ok(scene)
+            let desc = self.desc.clone();
+            let opts = settings.scene_options().map_err(value_error)?;
+            let scene = settings
+                .with_threads(|| Scene::build(&desc, &opts))
+                .map_err(value_error)?
+                .map_err(|e| {
+                    PyValueError::new_err(format!("cannot render {}: {e}", desc.source.display()))
+                })?;
+            let scene = Arc::new(scene);
+            *slot = Some((k, scene.clone()));
+            Ok(scene)
+        })
     }
 
     fn run(&self, py: Python<'_>, req: &RenderRequest) -> PyResult<PyFilm> {
