@@ -95,29 +95,10 @@ pub(crate) fn reflection_albedo(
     mu: f32,
     grid: usize,
 ) -> f32 {
-    let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
-    let g1 = dist.g1(wo);
-    let mut sum = 0.0f64;
-    for a in 0..grid {
-        for b in 0..grid {
-            let u = Vec2::new(
-                (a as f32 + 0.5) / grid as f32,
-                (b as f32 + 0.5) / grid as f32,
-            );
-            let m = dist.sample_visible_normal(wo, u);
-            let cos_om = wo.dot(m);
-            if cos_om <= 0.0 {
-                continue;
-            }
-            let wi = 2.0 * cos_om * m - wo;
-            if wi.z <= 0.0 {
-                continue;
-            }
-            let value = fresnel_dielectric(cos_om, eta) * dist.g2(wo, wi) / g1;
-            sum += f64::from(value);
-        }
-    }
-    (sum / (grid * grid) as f64) as f32
+    visible_normal_mean(dist, mu, grid, |wo, m, cos_om| {
+        let wi = 2.0 * cos_om * m - wo;
+        (wi.z > 0.0).then(|| fresnel_dielectric(cos_om, eta) * dist.g2(wo, wi))
+    })
 }
 
 /// The energy T(μ) that a rough interface of relative IOR `eta` transmits
@@ -127,6 +108,22 @@ pub(crate) fn transmission_albedo(
     eta: f32,
     mu: f32,
     grid: usize,
+) -> f32 {
+    visible_normal_mean(dist, mu, grid, |wo, m, cos_om| {
+        // None at total internal reflection on this microfacet.
+        let wt = refract(wo, m, eta)?;
+        (wt.z < 0.0).then(|| (1.0 - fresnel_dielectric(cos_om, eta)) * dist.g2(wo, wt))
+    })
+}
+
+/// The mean over the visible normals m of `lobe(wo, m, wo·m) / G1(wo)` for
+/// the direction `wo` at cosine `mu`, by a `grid` × `grid` midpoint rule
+/// (`None`, a direction on the wrong side, counts 0).
+fn visible_normal_mean(
+    dist: MicrofacetDistribution,
+    mu: f32,
+    grid: usize,
+    lobe: impl Fn(Vec3, Vec3, f32) -> Option<f32>,
 ) -> f32 {
     let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
     let g1 = dist.g1(wo);
@@ -142,14 +139,9 @@ pub(crate) fn transmission_albedo(
             if cos_om <= 0.0 {
                 continue;
             }
-            let Some(wt) = refract(wo, m, eta) else {
-                continue; // total internal reflection at this microfacet
-            };
-            if wt.z >= 0.0 {
-                continue;
+            if let Some(value) = lobe(wo, m, cos_om) {
+                sum += f64::from(value / g1);
             }
-            let value = (1.0 - fresnel_dielectric(cos_om, eta)) * dist.g2(wo, wt) / g1;
-            sum += f64::from(value);
         }
     }
     (sum / (grid * grid) as f64) as f32
