@@ -3,7 +3,7 @@
 use glam::Vec2;
 
 use super::hash::{combine, pixel_hash, unit_f32};
-use super::sobol::{laine_karras, sobol_dim1_reversed};
+use super::sobol::{laine_karras, sobol_dim1_reversed_and_reverse};
 
 /// Which point set a [`Sampler`] draws from.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -102,12 +102,17 @@ impl Sampler {
                 // (owen(sobol_dim0(j), k2), owen(sobol_dim1(j), k3)) with
                 // j = owen(i, k1) = rev(t): x = rev(lk(j, k2)) as in
                 // next_1d, and rev(sobol_dim1(j)) = sobol_dim1_reversed(t).
+                // Both reversals of t come from one table lookup, and the
+                // two output reversals are one 64-bit reversal of (y, x):
+                // rev64(y << 32 | x) = rev(x) << 32 | rev(y).
                 let key = combine(self.pixel, dim);
                 let scramble = combine(key, u32::MAX);
                 let t = laine_karras(self.index_reversed, key as u32);
-                let x = laine_karras(t.reverse_bits(), (key >> 32) as u32);
-                let y = laine_karras(sobol_dim1_reversed(t), scramble as u32);
-                Vec2::new(unit_f32(x.reverse_bits()), unit_f32(y.reverse_bits()))
+                let (t_dim1, t_reversed) = sobol_dim1_reversed_and_reverse(t);
+                let x = laine_karras(t_reversed, (key >> 32) as u32);
+                let y = laine_karras(t_dim1, scramble as u32);
+                let both = ((u64::from(y) << 32) | u64::from(x)).reverse_bits();
+                Vec2::new(unit_f32((both >> 32) as u32), unit_f32(both as u32))
             }
         }
     }
