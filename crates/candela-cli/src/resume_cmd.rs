@@ -2,7 +2,9 @@
 //! to its sample target (or time budget), and writes the outputs the
 //! original command asked for. The checkpoint carries the settings and the
 //! command's job ([`Job`]: scene, output, `--strict`, `-D`), so nothing else
-//! is needed; only how the work runs may be changed here.
+//! is needed; only how the work runs may be changed here. A distributed
+//! render's checkpoint is handed to the distributed front
+//! (`python -m candela.distributed --resume`).
 
 use crate::render_cmd::{load, render_job, Job, Outcome, UsageError};
 use anyhow::Result;
@@ -34,6 +36,11 @@ pub struct ResumeArgs {
     #[arg(long, value_name = "SECS")]
     pub checkpoint_every: Option<f64>,
 
+    /// For a distributed render's checkpoint: the Dask cluster to continue
+    /// on [default: the one it ran on].
+    #[arg(long, value_name = "ADDRESS")]
+    pub dask: Option<String>,
+
     /// No progress bar and no statistics on stderr.
     #[arg(short = 'q', long)]
     pub quiet: bool,
@@ -61,11 +68,6 @@ impl Job {
     fn from_record(record: &Map<String, Value>) -> Result<Self, String> {
         match record.get("front").and_then(Value::as_str) {
             Some(FRONT) => {}
-            Some("dask") => {
-                return Err("this checkpoint is of a distributed render: resume it with \
-                     `python -m candela.distributed --resume PATH --dask ADDRESS`"
-                    .into())
-            }
             other => return Err(format!("unknown front end {other:?} in the checkpoint")),
         }
         let bad = |key: &str| format!("the checkpoint's job has a malformed `{key}`");
@@ -83,6 +85,18 @@ impl Job {
 /// Runs `candela resume`.
 pub fn run(args: &ResumeArgs) -> Result<Outcome> {
     let checkpoint = Checkpoint::load(&args.checkpoint).map_err(|e| UsageError(e.to_string()))?;
+    if checkpoint.front.get("front").and_then(Value::as_str) == Some("dask") {
+        // A distributed render continues on a cluster: `--dask` or the one
+        // it ran on.
+        let recorded = checkpoint.front.get("address").and_then(Value::as_str);
+        let address = args.dask.as_deref().or(recorded).ok_or_else(|| {
+            UsageError(format!(
+                "{}: a distributed render's checkpoint: give the cluster with --dask ADDRESS",
+                args.checkpoint.display()
+            ))
+        })?;
+        return crate::dask::resume(&args.checkpoint, address, args.quiet);
+    }
     let mut job = Job::from_record(&checkpoint.front)
         .map_err(|e| UsageError(format!("{}: {e}", args.checkpoint.display())))?;
     job.quiet = args.quiet;
