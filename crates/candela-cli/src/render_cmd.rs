@@ -9,9 +9,9 @@ use crate::args::RenderArgs;
 use crate::progress::RenderBar;
 use crate::report::{print_stats, ReportContext};
 use anyhow::{Context, Result};
+use candela_render::checkpoint::CheckpointWriter;
 use candela_render::film::{write_film, OutputFormat, OutputOptions};
 use candela_render::integrator::Estimator;
-use candela_render::checkpoint::CheckpointWriter;
 use candela_render::render::{
     render_from, Cancel, Continuation, PassEnd, Progress, RenderControl, StopReason,
 };

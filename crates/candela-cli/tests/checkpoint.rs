@@ -85,7 +85,9 @@ fn a_render_killed_after_a_checkpoint_resumes_to_the_same_image_bit_for_bit() {
     );
     // The finished checkpoint resumes to the same image again, at once.
     std::fs::remove_file(&out).unwrap();
-    assert!(run(candela().args(["resume", path(&ck), "-q"])).status.success());
+    assert!(run(candela().args(["resume", path(&ck), "-q"]))
+        .status
+        .success());
     assert!(layers(&out) == layers(&reference));
 }
 
@@ -109,7 +111,10 @@ fn a_checkpoint_of_other_settings_or_another_scene_is_refused() {
     assert!(log.contains("seed = 1 in the checkpoint, 2 here"), "{log}");
     // Move the floor: another scene.
     let text = std::fs::read_to_string(&scene).unwrap();
-    let moved = text.replace("-1 -1 0 1 -1 0 1 1 0 -1 1 0", "-1 -1 0.1 1 -1 0.1 1 1 0 -1 1 0");
+    let moved = text.replace(
+        "-1 -1 0 1 -1 0 1 1 0 -1 1 0",
+        "-1 -1 0.1 1 -1 0.1 1 1 0 -1 1 0",
+    );
     assert_ne!(text, moved);
     std::fs::write(&scene, moved).unwrap();
     let log = refused(&run(candela().args(["resume", path(&ck)])));
@@ -177,7 +182,9 @@ fn a_million_spp_render_stays_the_size_of_its_film() {
         .map(|time| {
             let ck = dir.join(format!("ck-{time}"));
             let child = candela()
-                .args(["-r", "8", "8", "-t", "2", "-s", "1000000", "--time", time, "-q"])
+                .args([
+                    "-r", "8", "8", "-t", "2", "-s", "1000000", "--time", time, "-q",
+                ])
                 .args(["-f", path(&dir.join("out.png")), "--checkpoint", path(&ck)])
                 .args(["--checkpoint-every", "0"])
                 .spawn()
@@ -189,7 +196,10 @@ fn a_million_spp_render_stays_the_size_of_its_film() {
         .collect();
     let film = 64 * 144;
     for &(size, _) in &sizes {
-        assert!((film..film + 4096).contains(&size), "checkpoint of {size} bytes");
+        assert!(
+            (film..film + 4096).contains(&size),
+            "checkpoint of {size} bytes"
+        );
     }
     let (short, long) = (sizes[0].1, sizes[1].1);
     eprintln!("checkpoint bytes and peak KiB after 0.5 s and 2 s: {sizes:?}");

@@ -1,13 +1,23 @@
 //! Checkpoints from Python: the file format and the matching rules are the
 //! renderer's (`candela_render::checkpoint`); this only converts.
-//! `candela.distributed` writes them as finished units come back.
+//! `candela.distributed` writes them as finished units come back;
+//! `Scene.render(checkpoint=PATH)` renders through the renderer's
+//! `CheckpointWriter`, as the CLI does.
 
 use crate::film::PyFilm;
 use crate::settings::kwargs_json;
 use crate::stats::StatsRecord;
 use crate::wire::PlacedFilm;
-use candela_render::checkpoint::{Checkpoint, ContentHash};
+use crate::settings::RenderRequest;
+use crate::unit::crop;
+use crate::watch::run_interruptible;
+use candela_render::checkpoint::{Checkpoint, CheckpointWriter, ContentHash};
+use candela_render::film::PixelRect;
+use candela_render::render::{render_from, Cancel, Continuation, PassEnd, RenderControl};
+use candela_render::scene::Scene;
 use candela_render::settings::Settings;
+use candela_scene::SceneDesc;
+use std::sync::Arc;
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -99,4 +109,62 @@ pub fn read_checkpoint<'py>(
     };
     d.set_item("film", Py::new(py, film)?)?;
     Ok(d)
+}
+
+/// `Scene.render(checkpoint=PATH, ...)`: one render of the whole sample
+/// range that saves checkpoints as the CLI does (and continues the one at
+/// PATH if it is of this scene and these settings).
+pub fn render_checkpointed(
+    py: Python<'_>,
+    desc: &Arc<SceneDesc>,
+    scene: &Scene,
+    req: &RenderRequest,
+) -> PyResult<PyFilm> {
+    let spp = req.settings.sampling.spp();
+    if req.passes != 1 || req.samples != (0..spp) {
+        return Err(PyValueError::new_err(
+            "checkpoint= renders every sample of each pixel in one go: \
+             give no sample_range or passes with it",
+        ));
+    }
+    let mut front = serde_json::Map::new();
+    front.insert("front".into(), "python".into());
+    front.insert("scene".into(), desc.source.display().to_string().into());
+    let started = py
+        .detach(|| CheckpointWriter::start(&req.settings, desc, front))
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let Some((writer, resumed)) = started else {
+        return Err(PyValueError::new_err("no checkpoint path"));
+    };
+    let mut settings = req.settings.render_settings();
+    settings.time_budget = writer.budget_left(settings.time_budget);
+    let cancel = Cancel::new();
+    let result = run_interruptible(py, &cancel, || {
+        let after_pass = |p: &PassEnd<'_>| writer.after_pass(p);
+        let from = Continuation {
+            start: resumed.as_ref().map(|r| &r.film),
+            after_pass: Some(&after_pass),
+        };
+        let control = RenderControl {
+            cancel: Some(cancel.clone()),
+            progress: None,
+        };
+        let out = render_from(scene, &settings, &control, &from).map_err(|e| e.to_string())?;
+        // Saved on Ctrl-C too: the film holds the passes that finished.
+        writer
+            .save(out.film.clone(), out.stats.render_time)
+            .map_err(|e| e.to_string())?;
+        Ok::<_, String>(out)
+    })?;
+    let out = result.map_err(PyValueError::new_err)?;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let cell = settings.cell.unwrap_or(PixelRect::full(w, h));
+    Ok(PyFilm {
+        inner: PlacedFilm {
+            film: crop(&out.film, cell),
+            origin: (cell.x, cell.y),
+            full: (w, h),
+            stats: StatsRecord::from(&out.stats),
+        },
+    })
 }

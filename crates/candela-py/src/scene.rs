@@ -104,6 +104,9 @@ impl PyScene {
 
     fn run(&self, py: Python<'_>, req: &RenderRequest) -> PyResult<PyFilm> {
         let scene = self.built(py, &req.settings)?;
+        if req.settings.run.checkpoint.is_some() {
+            return crate::checkpoint::render_checkpointed(py, &self.desc, &scene, req);
+        }
         let base = req.settings.render_settings();
         let cancel = Cancel::new();
         let passes = split_samples(&req.samples, req.passes);
