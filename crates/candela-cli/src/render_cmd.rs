@@ -145,12 +145,6 @@ pub fn render_job(
     };
     let output = render_from(&scene, &render, &control, &from)?;
     bar.finish();
-    if let Some(w) = &writer {
-        if let (Some(e), false) = (w.take_failure(), job.quiet) {
-            eprintln!("candela: warning: {e}");
-        }
-        w.save(output.film.clone(), output.stats.render_time)?;
-    }
     let region = settings.image.region();
     let max_samples = if settings.sampling.spp.is_none() && render.time_budget.is_some() {
         output.film.sample_spread(region).max
@@ -167,6 +161,13 @@ pub fn render_job(
         rate_image: adaptive.then_some(max_samples),
     };
     let written = write_film(&job.output, &output.film, &opts)?;
+    if let Some(w) = &writer {
+        if let (Some(e), false) = (w.take_failure(), job.quiet) {
+            eprintln!("candela: warning: {e}");
+        }
+        // After the image: a checkpoint that cannot be written costs no image.
+        w.save(output.film.clone(), output.stats.render_time)?;
+    }
     if !job.quiet {
         let cx = ReportContext {
             load_time,

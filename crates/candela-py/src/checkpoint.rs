@@ -6,23 +6,23 @@
 
 use crate::film::PyFilm;
 use crate::settings::kwargs_json;
-use crate::stats::StatsRecord;
-use crate::wire::PlacedFilm;
 use crate::settings::RenderRequest;
+use crate::stats::StatsRecord;
 use crate::unit::crop;
 use crate::watch::run_interruptible;
+use crate::wire::PlacedFilm;
 use candela_render::checkpoint::{Checkpoint, CheckpointWriter, ContentHash};
 use candela_render::film::PixelRect;
 use candela_render::render::{render_from, Cancel, Continuation, PassEnd, RenderControl};
 use candela_render::scene::Scene;
 use candela_render::settings::Settings;
 use candela_scene::SceneDesc;
-use std::sync::Arc;
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde_json::Value;
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::Duration;
 
 fn json_py<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
@@ -30,8 +30,9 @@ fn json_py<'py>(py: Python<'py>, v: &Value) -> PyResult<Bound<'py, PyAny>> {
 }
 
 fn parse_hash(text: &str) -> PyResult<ContentHash> {
-    ContentHash::parse(text)
-        .ok_or_else(|| PyValueError::new_err(format!("scene_hash {text:?}: expected 32 hex digits")))
+    ContentHash::parse(text).ok_or_else(|| {
+        PyValueError::new_err(format!("scene_hash {text:?}: expected 32 hex digits"))
+    })
 }
 
 /// Writes a checkpoint atomically: `film` (of the whole image), the full

@@ -4,6 +4,7 @@ the uninterrupted film bit for bit; a checkpoint of another render is
 refused by name."""
 
 import json
+import os
 import re
 import signal
 import subprocess
@@ -107,3 +108,43 @@ def test_a_checkpoint_of_another_render_is_refused(cluster, spheres_path, tmp_pa
     ck.write_bytes(ck.read_bytes()[:100])
     with pytest.raises(ValueError, match="truncated"):
         dist.render(spheres_path, cluster, tiles=(2, 2), **small)
+
+
+def test_scene_render_writes_and_continues_checkpoints(spheres_path, tmp_path):
+    ck = tmp_path / "ck"
+    scene = candela.load(spheres_path)
+    small = dict(SETTINGS, spp=4)
+    plain = scene.render(**small)
+    film = scene.render(checkpoint=ck, **small)
+    assert bits_equal(film, plain)
+    assert bits_equal(candela.read_checkpoint(ck)["film"], plain)
+    again = scene.render(checkpoint=ck, **small)  # finished: continues with nothing left to do
+    assert bits_equal(again, plain) and again.stats["samples"] == 0
+    with pytest.raises(ValueError, match="seed = 9 in the checkpoint, 10 here"):
+        scene.render(checkpoint=ck, **dict(small, seed=10))
+    with pytest.raises(ValueError, match="sample_range or passes"):
+        scene.render(checkpoint=ck, passes=2, **small)
+
+
+def test_candela_resume_hands_a_distributed_checkpoint_to_the_dask_front(cli_bin, cluster, spheres_path, tmp_path):
+    ck, out = tmp_path / "ck", tmp_path / "out.exr"
+    small = dict(SETTINGS, spp=4, checkpoint=str(ck))
+    half = dist.plan(SETTINGS["width"], SETTINGS["height"], 4, (2, 2), 2)[:4]  # pass 0 of every cell
+    # A checkpoint with only the first pass, as a client killed half-way leaves.
+    scene = candela.load(spheres_path)
+    first = candela.Film.empty(SETTINGS["width"], SETTINGS["height"])
+    for u in half:
+        first.add(scene.render(cell=u.cell, sample_range=u.sample_range, **dict(SETTINGS, spp=4)))
+    resolved = scene.settings(**dict(small, threads=1))
+    resolved.pop("cell")
+    front = {"front": "dask", "scene": spheres_path, "tiles": [2, 2], "passes": 2, "strict": False,
+             "output": str(out), "address": cluster.scheduler.address}
+    candela.write_checkpoint(ck, first, settings=resolved, scene_hash=scene.content_hash(**resolved), front=front,
+                             elapsed_s=1.0)
+    env = dict(os.environ, CANDELA_PYTHON=sys.executable)
+    done = subprocess.run([cli_bin, "resume", str(ck)], env=env, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "4/8 units" in done.stderr and "5/8 units" not in done.stderr, done.stderr
+    local = scene.render(passes=2, **dict(SETTINGS, spp=4))
+    assert bits_equal(candela.read_checkpoint(ck)["film"], local)
+    assert np.array_equal(candela.read_image(out), local.image())

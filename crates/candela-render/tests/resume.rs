@@ -42,7 +42,10 @@ fn stopped_after(scene: &Scene, settings: &RenderSettings, passes: u32) -> Film 
     let out = render_from(scene, settings, &control, &from).expect("renders");
     assert_eq!(out.stop, StopReason::Cancelled, "stopped before the end");
     let film = saved.into_inner().unwrap().expect("the pass was reported");
-    assert_eq!(out.film, film, "the cancelled render returns the saved passes");
+    assert_eq!(
+        out.film, film,
+        "the cancelled render returns the saved passes"
+    );
     film
 }
 
@@ -123,7 +126,10 @@ fn adaptive_stops_are_read_back_from_the_sums() {
     let converged: Vec<usize> = (0..stopped.pixels.len())
         .filter(|&i| {
             let p = &stopped.pixels[i];
-            settings.adaptive.unwrap().should_stop(p.count, p.lum, p.lum_sq)
+            settings
+                .adaptive
+                .unwrap()
+                .should_stop(p.count, p.lum, p.lum_sq)
         })
         .collect();
     assert!(!converged.is_empty(), "some pixels converge early");

@@ -102,9 +102,7 @@ impl Checkpoint {
             "elapsed_s": self.elapsed.as_secs_f64(),
         })
         .to_string();
-        let mut out = Vec::with_capacity(
-            64 + record.len() + self.film.pixels.len() * PIXEL_BYTES,
-        );
+        let mut out = Vec::with_capacity(64 + record.len() + self.film.pixels.len() * PIXEL_BYTES);
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&VERSION.to_le_bytes());
         out.extend_from_slice(&(record.len() as u32).to_le_bytes());
@@ -141,7 +139,9 @@ impl Checkpoint {
         h.write(body);
         let [a, b] = h.finish().0;
         if tail[..8] != a.to_le_bytes() || tail[8..] != b.to_le_bytes() {
-            return Err("the checkpoint is truncated or corrupt (its checksum does not match)".into());
+            return Err(
+                "the checkpoint is truncated or corrupt (its checksum does not match)".into(),
+            );
         }
         let mut r = ByteReader::new(&body[MAGIC.len() + 4..]);
         let n = r.u32().ok_or_else(truncated)? as usize;
@@ -172,7 +172,10 @@ impl Checkpoint {
             .as_f64()
             .and_then(|s| Duration::try_from_secs_f64(s).ok())
             .ok_or("the checkpoint's render time is malformed")?;
-        let (w, h) = (r.u32().ok_or_else(truncated)?, r.u32().ok_or_else(truncated)?);
+        let (w, h) = (
+            r.u32().ok_or_else(truncated)?,
+            r.u32().ok_or_else(truncated)?,
+        );
         if (w, h) != (settings.image.width, settings.image.height) {
             return Err(format!(
                 "the checkpoint's film is {w}x{h} but its settings say {}x{}",

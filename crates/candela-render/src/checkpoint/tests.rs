@@ -73,7 +73,10 @@ fn other_settings_or_scenes_are_named() {
     assert_eq!(c.check_matches(c.scene_hash, &faster), Ok(()));
     let mut seed = same.clone();
     seed.sampling.seed = 8;
-    let err = c.check_matches(c.scene_hash, &seed).unwrap_err().to_string();
+    let err = c
+        .check_matches(c.scene_hash, &seed)
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("seed = 7 in the checkpoint, 8 here"), "{err}");
     let err = c.check_matches(ContentHash([1, 3]), &same).unwrap_err();
     assert!(err.to_string().contains("another scene"), "{err}");

@@ -62,7 +62,8 @@ pub struct RenderSettings {
     /// rounding (addition in another order), i.e. within a few ulps.
     pub sample_range: Option<Range<u32>>,
     /// Stop each pixel once its mean is known well enough (CS184 `-a`).
-    /// The rule sees only the samples of this render.
+    /// The rule sees only the samples of this render (and of the film it
+    /// continues, see [`render_from`]).
     pub adaptive: Option<Adaptive>,
     /// Stop starting passes once this much time has passed; the last pass
     /// may overrun by about [`schedule::PASS_TARGET`].
