@@ -44,6 +44,9 @@ pub enum Command {
     /// Candela Studio: view and render the scene interactively in the
     /// browser (a local server; prints its URL).
     View(Box<crate::view_cmd::ViewArgs>),
+    /// Continue a render from its checkpoint (`--checkpoint PATH`) and write
+    /// the outputs the original command asked for.
+    Resume(crate::resume_cmd::ResumeArgs),
 }
 
 /// Flags of a render.

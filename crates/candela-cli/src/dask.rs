@@ -11,6 +11,7 @@ use crate::args::RenderArgs;
 use crate::render_cmd::{explicit_settings, Outcome, UsageError};
 use anyhow::{Context, Result};
 use clap::ArgMatches;
+use std::path::Path;
 use std::process::Command;
 
 /// Exit code of the distributed front for settings it refuses.
@@ -24,8 +25,7 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches, address: &str) -> Result<Out
         .scene
         .as_ref()
         .ok_or_else(|| UsageError("--dask needs a scene file that every worker can read".into()))?;
-    let python = std::env::var("CANDELA_PYTHON").unwrap_or_else(|_| "python3".into());
-    let mut cmd = Command::new(&python);
+    let mut cmd = python();
     cmd.args(["-m", "candela.distributed"])
         .arg(scene)
         .args(["--dask", address])
@@ -47,6 +47,30 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches, address: &str) -> Result<Out
     if args.strict {
         cmd.arg("--strict");
     }
+    finish(cmd)
+}
+
+/// `candela resume PATH` of a distributed render's checkpoint: continued
+/// by the distributed front on the cluster at `address`.
+pub fn resume(checkpoint: &Path, address: &str, quiet: bool) -> Result<Outcome> {
+    let mut cmd = python();
+    cmd.args(["-m", "candela.distributed", "--resume"])
+        .arg(checkpoint)
+        .args(["--dask", address]);
+    if quiet {
+        cmd.arg("-q");
+    }
+    finish(cmd)
+}
+
+/// The Python interpreter (`$CANDELA_PYTHON`, else `python3`).
+fn python() -> Command {
+    Command::new(std::env::var("CANDELA_PYTHON").unwrap_or_else(|_| "python3".into()))
+}
+
+/// Runs the distributed front and maps its exit code.
+fn finish(mut cmd: Command) -> Result<Outcome> {
+    let python = cmd.get_program().to_string_lossy().into_owned();
     let status = cmd.status().with_context(|| {
         format!(
             "cannot start {python} (the Python package `candela` with Dask is needed for --dask)"

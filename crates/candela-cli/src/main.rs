@@ -10,6 +10,7 @@ mod dask;
 mod progress;
 mod render_cmd;
 mod report;
+mod resume_cmd;
 mod view_cmd;
 
 use std::process::ExitCode;
@@ -21,6 +22,7 @@ fn main() -> ExitCode {
         Some(args::Command::View(cmd)) => {
             view_cmd::run(&cmd, &matches).map(|()| render_cmd::Outcome::Done)
         }
+        Some(args::Command::Resume(cmd)) => resume_cmd::run(&cmd),
         None => match &cli.render.dask {
             Some(address) => dask::run(&cli.render, &matches, address),
             None => render_cmd::run(&cli.render, &matches),

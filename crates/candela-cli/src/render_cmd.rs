@@ -1,20 +1,25 @@
 //! `candela [flags] [scene.dae]`: load, build, render, write.
 //!
 //! The render runs in progressive passes: Ctrl-C (or `--time`) stops it
-//! between passes, and the image rendered so far is still written.
+//! between passes, and the image rendered so far is still written. With
+//! `--checkpoint PATH` the film is also saved between passes (see
+//! [`candela_render::checkpoint`]); `candela resume PATH` continues it.
 
 use crate::args::RenderArgs;
 use crate::progress::RenderBar;
 use crate::report::{print_stats, ReportContext};
 use anyhow::{Context, Result};
+use candela_render::checkpoint::CheckpointWriter;
 use candela_render::film::{write_film, OutputFormat, OutputOptions};
 use candela_render::integrator::Estimator;
-use candela_render::render::{render_with, Cancel, Progress, RenderControl, StopReason};
+use candela_render::render::{
+    render_from, Cancel, Continuation, PassEnd, Progress, RenderControl, StopReason,
+};
 use candela_render::scene::Scene;
 use candela_render::settings::{Settings, SettingsError};
 use candela_scene::{LoadOptions, Loaded};
 use clap::ArgMatches;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Exit code of a render stopped by Ctrl-C (128 + SIGINT, as shells do).
@@ -61,24 +66,84 @@ pub fn explicit_settings(
     Ok(explicit)
 }
 
+/// What a render command renders and writes, beside its settings: what a
+/// checkpoint records so that `candela resume` finishes the same job.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Job {
+    /// The scene file (`None`: the built-in demo).
+    pub scene: Option<PathBuf>,
+    /// The output image.
+    pub output: PathBuf,
+    /// `--strict`.
+    pub strict: bool,
+    /// `-D NAME=VALUE`.
+    pub defines: Vec<(String, String)>,
+    /// `-q`.
+    pub quiet: bool,
+}
+
 /// Runs one render from the command line.
 pub fn run(args: &RenderArgs, matches: &ArgMatches) -> Result<Outcome> {
     let explicit = explicit_settings(args, matches)?;
+    let job = Job {
+        scene: args.scene.clone(),
+        output: args.output.clone(),
+        strict: args.strict,
+        defines: args.defines.clone(),
+        quiet: args.quiet,
+    };
     let load_start = Instant::now();
-    let loaded = load(args)?;
+    let loaded = load(&job)?;
     let load_time = load_start.elapsed();
     let settings = Settings::resolve(&loaded.hints, &explicit).map_err(UsageError::from)?;
-    let scene = build(&loaded, &settings, args.quiet)?;
-    let render = settings.render_settings();
+    render_job(&job, &loaded, load_time, &settings)
+}
+
+/// Renders a loaded scene with resolved settings and writes the outputs
+/// (and checkpoints, if the settings ask for them).
+pub fn render_job(
+    job: &Job,
+    loaded: &Loaded,
+    load_time: std::time::Duration,
+    settings: &Settings,
+) -> Result<Outcome> {
+    let scene = build(loaded, settings, job.quiet)?;
+    let checkpoints = CheckpointWriter::start(settings, &loaded.scene, job.record())
+        .map_err(|e| UsageError(e.to_string()))?;
+    let mut render = settings.render_settings();
+    let (writer, resumed) = match checkpoints {
+        Some((writer, resumed)) => (Some(writer), resumed),
+        None => (None, None),
+    };
+    if let Some(w) = &writer {
+        render.time_budget = w.budget_left(render.time_budget);
+        if let (Some(r), false) = (&resumed, job.quiet) {
+            let done: u64 = r.film.pixels.iter().map(|p| p.count as u64).sum();
+            eprintln!(
+                "candela: continuing {} ({done} samples done, {:.1} s rendered)",
+                w.path().display(),
+                r.elapsed.as_secs_f64()
+            );
+        }
+    }
     let cancel = Cancel::new();
-    watch_ctrl_c(&cancel, args.quiet);
-    let bar = RenderBar::new(render.time_budget, args.quiet);
+    watch_ctrl_c(&cancel, job.quiet);
+    let bar = RenderBar::new(render.time_budget, job.quiet);
     let on_progress = |p: &Progress| bar.update(p);
     let control = RenderControl {
         cancel: Some(cancel),
         progress: Some(&on_progress),
     };
-    let output = render_with(&scene, &render, &control)?;
+    let after_pass = |pass: &PassEnd<'_>| {
+        if let Some(w) = &writer {
+            w.after_pass(pass);
+        }
+    };
+    let from = Continuation {
+        start: resumed.as_ref().map(|r| &r.film),
+        after_pass: Some(&after_pass),
+    };
+    let output = render_from(&scene, &render, &control, &from)?;
     bar.finish();
     let region = settings.image.region();
     let max_samples = if settings.sampling.spp.is_none() && render.time_budget.is_some() {
@@ -95,8 +160,15 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches) -> Result<Outcome> {
         cost: true,
         rate_image: adaptive.then_some(max_samples),
     };
-    let written = write_film(&args.output, &output.film, &opts)?;
-    if !args.quiet {
+    let written = write_film(&job.output, &output.film, &opts)?;
+    if let Some(w) = &writer {
+        if let (Some(e), false) = (w.take_failure(), job.quiet) {
+            eprintln!("candela: warning: {e}");
+        }
+        // After the image: a checkpoint that cannot be written costs no image.
+        w.save(output.film.clone(), output.stats.render_time)?;
+    }
+    if !job.quiet {
         let cx = ReportContext {
             load_time,
             path_integrator: settings.integrator.estimator != Estimator::Normals,
@@ -108,6 +180,9 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches) -> Result<Outcome> {
         for path in &written {
             eprintln!("candela: wrote {}", path.display());
         }
+        if let Some(w) = &writer {
+            eprintln!("candela: wrote checkpoint {}", w.path().display());
+        }
     }
     Ok(match output.stop {
         StopReason::Cancelled => Outcome::Interrupted,
@@ -116,13 +191,8 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches) -> Result<Outcome> {
 }
 
 /// Loads the scene (or the demo) and prints its warnings.
-fn load(args: &RenderArgs) -> Result<Loaded> {
-    load_scene(
-        args.scene.as_deref(),
-        args.strict,
-        &args.defines,
-        args.quiet,
-    )
+pub fn load(job: &Job) -> Result<Loaded> {
+    load_scene(job.scene.as_deref(), job.strict, &job.defines, job.quiet)
 }
 
 /// Loads `scene` (`None`: the demo) with `--strict` and `-D` defines, and

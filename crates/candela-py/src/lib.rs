@@ -4,6 +4,7 @@
 //! of per-pixel sums, which merge by addition (`merge`) and travel as bytes,
 //! which is all `candela.distributed` needs to spread a render over Dask.
 
+mod checkpoint;
 mod film;
 mod scene;
 mod settings;
@@ -109,5 +110,7 @@ fn _candela(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add_function(wrap_pyfunction!(read_image, m)?)?;
     m.add_function(wrap_pyfunction!(settings_help, m)?)?;
+    m.add_function(wrap_pyfunction!(checkpoint::write_checkpoint, m)?)?;
+    m.add_function(wrap_pyfunction!(checkpoint::read_checkpoint, m)?)?;
     Ok(())
 }

@@ -5,6 +5,7 @@ use crate::settings::{kwargs_json, request, split_samples, value_error, RenderRe
 use crate::unit::render_cell;
 use crate::watch::run_interruptible;
 use crate::wire::PlacedFilm;
+use candela_render::checkpoint::scene_hash;
 use candela_render::render::Cancel;
 use candela_render::render::{RenderError, RenderSettings};
 use candela_render::scene::Scene;
@@ -103,6 +104,9 @@ impl PyScene {
 
     fn run(&self, py: Python<'_>, req: &RenderRequest) -> PyResult<PyFilm> {
         let scene = self.built(py, &req.settings)?;
+        if req.settings.run.checkpoint.is_some() {
+            return crate::checkpoint::render_checkpointed(py, &self.desc, &scene, req);
+        }
         let base = req.settings.render_settings();
         let cancel = Cancel::new();
         let passes = split_samples(&req.samples, req.passes);
@@ -204,6 +208,18 @@ impl PyScene {
         let req = request(&self.hints, kwargs_json(kwargs)?)?;
         let text = serde_json::Value::Object(req.settings.to_json()).to_string();
         py.import("json")?.call_method1("loads", (text,))
+    }
+
+    /// A content hash of the scene (geometry, materials, the bytes of its
+    /// textures, lights, cameras) and of the environment map these settings
+    /// add, as 32 hex digits: what a checkpoint records so that it is never
+    /// continued with another scene.
+    #[pyo3(signature = (**kwargs))]
+    fn content_hash(&self, py: Python<'_>, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
+        let req = request(&self.hints, kwargs_json(kwargs)?)?;
+        let desc = self.desc.clone();
+        let env = req.settings.image.env_map.clone();
+        Ok(py.detach(|| scene_hash(&desc, env.as_deref())).to_string())
     }
 
     fn __repr__(&self) -> String {

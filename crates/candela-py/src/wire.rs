@@ -10,13 +10,11 @@
 //! their bits, so a film survives the trip exactly.
 
 use crate::stats::StatsRecord;
-use candela_render::film::{Film, PixelSums};
-use glam::DVec3;
+use candela_render::film::wire::{decode_film, encode_pixels, ByteReader, PIXEL_BYTES};
+use candela_render::film::Film;
 
 const MAGIC: &[u8; 8] = b"CNDLFLM3";
 const HEADER: usize = 8 + 6 * 4 + 10 * 8 + 2 * 8;
-/// Bytes per pixel in the wire format.
-pub const PIXEL_BYTES: usize = 15 * 8 + 2 * 4 + 2 * 8;
 
 /// A film with where it sits in the full image and what it cost.
 #[derive(Clone, Debug, PartialEq)]
@@ -69,43 +67,8 @@ pub fn encode(f: &PlacedFilm) -> Vec<u8> {
     }
     out.extend_from_slice(&f.stats.render_time_s.to_le_bytes());
     out.extend_from_slice(&f.stats.wall_time_s.to_le_bytes());
-    for p in &f.film.pixels {
-        let (r, q, a, n) = (p.radiance, p.radiance_sq, p.albedo, p.normal);
-        let sums = [
-            r.x, r.y, r.z, q.x, q.y, q.z, p.lum, p.lum_sq, a.x, a.y, a.z, n.x, n.y, n.z, p.depth,
-        ];
-        for v in sums {
-            out.extend_from_slice(&v.to_le_bytes());
-        }
-        out.extend_from_slice(&p.depth_count.to_le_bytes());
-        out.extend_from_slice(&p.count.to_le_bytes());
-        out.extend_from_slice(&p.nodes.to_le_bytes());
-        out.extend_from_slice(&p.prim_tests.to_le_bytes());
-    }
+    encode_pixels(&f.film.pixels, &mut out);
     out
-}
-
-struct Reader<'a> {
-    bytes: &'a [u8],
-}
-
-impl Reader<'_> {
-    fn take<const N: usize>(&mut self) -> [u8; N] {
-        let (head, rest) = self.bytes.split_at(N);
-        self.bytes = rest;
-        let mut a = [0; N];
-        a.copy_from_slice(head);
-        a
-    }
-    fn u32(&mut self) -> u32 {
-        u32::from_le_bytes(self.take())
-    }
-    fn u64(&mut self) -> u64 {
-        u64::from_le_bytes(self.take())
-    }
-    fn f64(&mut self) -> f64 {
-        f64::from_le_bytes(self.take())
-    }
 }
 
 /// Decodes bytes written by [`encode`].
@@ -113,38 +76,33 @@ pub fn decode(bytes: &[u8]) -> Result<PlacedFilm, WireError> {
     if bytes.len() < HEADER || &bytes[..8] != MAGIC {
         return Err(WireError::Header);
     }
-    let mut r = Reader { bytes: &bytes[8..] };
-    let (w, h, ox, oy, fw, fh) = (r.u32(), r.u32(), r.u32(), r.u32(), r.u32(), r.u32());
+    let mut r = ByteReader::new(&bytes[8..]);
+    let mut u32 = || r.u32().ok_or(WireError::Header);
+    let (w, h, ox, oy, fw, fh) = (u32()?, u32()?, u32()?, u32()?, u32()?, u32()?);
     let fits = |o: u32, n: u32, full: u32| o.checked_add(n).is_some_and(|end| end <= full);
     if !fits(ox, w, fw) || !fits(oy, h, fh) {
         return Err(WireError::Placement);
     }
-    let counters = std::array::from_fn(|_| r.u64());
-    let stats = StatsRecord::from_parts(counters, r.f64(), r.f64());
-    let n = w as usize * h as usize;
-    let want = n * PIXEL_BYTES;
-    if r.bytes.len() != want {
+    let mut counters = [0u64; 10];
+    for c in counters.iter_mut() {
+        *c = r.u64().ok_or(WireError::Header)?;
+    }
+    let times = (r.f64(), r.f64());
+    let (Some(render_time), Some(wall_time)) = times else {
+        return Err(WireError::Header);
+    };
+    let stats = StatsRecord::from_parts(counters, render_time, wall_time);
+    let want = w as usize * h as usize * PIXEL_BYTES;
+    if r.remaining() != want {
         return Err(WireError::Length {
-            got: r.bytes.len(),
+            got: r.remaining(),
             want,
         });
     }
-    let mut film = Film::new(w, h);
-    for p in film.pixels.iter_mut() {
-        *p = PixelSums {
-            radiance: DVec3::new(r.f64(), r.f64(), r.f64()),
-            radiance_sq: DVec3::new(r.f64(), r.f64(), r.f64()),
-            lum: r.f64(),
-            lum_sq: r.f64(),
-            albedo: DVec3::new(r.f64(), r.f64(), r.f64()),
-            normal: DVec3::new(r.f64(), r.f64(), r.f64()),
-            depth: r.f64(),
-            depth_count: r.u32(),
-            count: r.u32(),
-            nodes: r.u64(),
-            prim_tests: r.u64(),
-        };
-    }
+    let film: Film = decode_film(&mut r, w, h).ok_or(WireError::Length {
+        got: bytes.len() - HEADER,
+        want,
+    })?;
     Ok(PlacedFilm {
         film,
         origin: (ox, oy),

@@ -20,14 +20,16 @@ from candela._candela import (
     demo_scene,
     load,
     merge,
+    read_checkpoint,
     read_image,
     settings_help,
+    write_checkpoint,
 )
 
 # After the native names it uses: ``candela.distributed`` is there with a
 # plain ``import candela`` (Dask itself is imported only when used).
 from candela import distributed  # noqa: E402
 
-__all__ = ["Film", "LoadError", "Scene", "demo_scene", "load", "merge", "read_image", "settings_help",
-           "distributed"]
+__all__ = ["Film", "LoadError", "Scene", "demo_scene", "load", "merge", "read_checkpoint", "read_image",
+           "settings_help", "write_checkpoint", "distributed"]
 __version__ = "0.1.0"

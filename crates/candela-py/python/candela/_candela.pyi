@@ -104,6 +104,9 @@ class Scene:
         else the default. Ctrl-C raises KeyboardInterrupt."""
     def settings(self, **settings: Any) -> Dict[str, Any]:
         """Every setting a ``render`` with these keywords would use."""
+    def content_hash(self, **settings: Any) -> str:
+        """Content hash (32 hex digits) of the scene, its textures and the
+        environment map of these settings, as checkpoints record it."""
 
 def load(path: _Path, *, strict: bool = False) -> Scene:
     """Loads a COLLADA (.dae) scene."""
@@ -119,3 +122,13 @@ def read_image(path: _Path) -> npt.NDArray[np.float32]:
 
 def settings_help() -> Dict[str, str]:
     """The help of every render setting, by name (as ``candela --help``)."""
+
+def write_checkpoint(path: _Path, film: Film, *, settings: Dict[str, Any], scene_hash: str,
+                     front: Dict[str, Any], elapsed_s: float) -> None:
+    """Writes a checkpoint (the CLI's format) atomically."""
+
+def read_checkpoint(path: _Path, *, scene_hash: Optional[str] = None,
+                    settings: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
+    """Reads a checkpoint: ``settings``, ``front``, ``elapsed_s``, ``scene_hash``
+    and ``film``; with ``scene_hash`` and ``settings``, raises ValueError
+    naming what differs if it is of another render."""

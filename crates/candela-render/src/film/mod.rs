@@ -14,6 +14,7 @@ pub mod adaptive;
 pub mod output;
 mod rect;
 mod sums;
+pub mod wire;
 
 pub use adaptive::Adaptive;
 pub use output::{write_film, OutputError, OutputFormat, OutputOptions};

@@ -11,15 +11,17 @@
 //! schedule, with or without adaptive sampling.
 //!
 //! Library users call [`render`] (or [`render_with`] for cancellation and
-//! rich progress) and get a [`Film`] of mergeable sums: films of disjoint
+//! rich progress, [`render_from`] to continue a film and checkpoint it) and get a [`Film`] of mergeable sums: films of disjoint
 //! cells, or of disjoint sample ranges of the same pixels, merge with
 //! [`Film::merge`] into the film of the whole job.
 
 mod control;
+mod resume;
 pub mod schedule;
 mod tile;
 
 pub use control::{Cancel, Progress, RenderControl};
+pub use resume::{Continuation, PassEnd};
 
 use crate::film::{Adaptive, Film, PixelRect};
 use crate::integrator::IntegratorSettings;
@@ -60,7 +62,8 @@ pub struct RenderSettings {
     /// rounding (addition in another order), i.e. within a few ulps.
     pub sample_range: Option<Range<u32>>,
     /// Stop each pixel once its mean is known well enough (CS184 `-a`).
-    /// The rule sees only the samples of this render.
+    /// The rule sees only the samples of this render (and of the film it
+    /// continues, see [`render_from`]).
     pub adaptive: Option<Adaptive>,
     /// Stop starting passes once this much time has passed; the last pass
     /// may overrun by about [`schedule::PASS_TARGET`].
@@ -152,7 +155,23 @@ pub fn render_with(
     settings: &RenderSettings,
     control: &RenderControl,
 ) -> Result<RenderOutput, RenderError> {
+    render_from(scene, settings, control, &Continuation::default())
+}
+
+/// [`render_with`], continuing the film `from.start` (a stopped render of
+/// the same scene and settings: the result equals the uninterrupted render
+/// bit for bit) and showing every finished pass to `from.after_pass`.
+pub fn render_from(
+    scene: &Scene,
+    settings: &RenderSettings,
+    control: &RenderControl,
+    from: &Continuation,
+) -> Result<RenderOutput, RenderError> {
     let region = region(scene, settings)?;
+    let size = (scene.camera.width, scene.camera.height);
+    if let Some(film) = from.start {
+        resume::check_start(film, settings, size)?;
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
         .build()?;
@@ -161,7 +180,10 @@ pub fn render_with(
     let mut tiles: Vec<TileState> = region
         .tiles(settings.tile)
         .into_iter()
-        .map(TileState::new)
+        .map(|rect| match from.start {
+            Some(film) => TileState::from_film(rect, film, settings),
+            None => TileState::new(rect),
+        })
         .collect();
     let mut stats = RenderStats {
         threads: pool.current_num_threads(),
@@ -208,6 +230,14 @@ pub fn render_with(
             break StopReason::Cancelled;
         }
         stats.passes += 1;
+        if let Some(after_pass) = from.after_pass {
+            after_pass(&PassEnd {
+                tiles: &tiles,
+                size,
+                stats: &stats,
+                elapsed: start.elapsed(),
+            });
+        }
         let remaining = settings
             .time_budget
             .map(|b| b.saturating_sub(start.elapsed()));
@@ -216,7 +246,7 @@ pub fn render_with(
             None => break StopReason::TimeBudget,
         }
     };
-    let film = assemble(&tiles, scene.camera.width, scene.camera.height);
+    let film = assemble(&tiles, size.0, size.1);
     stats.converged_pixels = tiles.iter().map(TileState::converged_count).sum();
     stats.render_time = start.elapsed();
     Ok(RenderOutput { film, stats, stop })

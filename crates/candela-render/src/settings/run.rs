@@ -1,9 +1,11 @@
-//! How the work runs: threads, tiles, the acceleration structure and the
-//! memory a render may claim. None of these changes the image.
+//! How the work runs: threads, tiles, the acceleration structure, the
+//! memory a render may claim and its checkpoints. None of these changes the
+//! image.
 
 use super::{check, SettingsError};
 use candela_bvh::BuildStrategy;
 use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
 
 /// BVH construction (`--bvh`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -33,6 +35,8 @@ impl From<Bvh> for BuildStrategy {
 pub const DEFAULT_TILE: u32 = 16;
 /// Default cap on the memory a render's film may claim, in GiB.
 pub const DEFAULT_MEMORY_LIMIT_GIB: f64 = 16.0;
+/// Default seconds between two checkpoints.
+pub const DEFAULT_CHECKPOINT_EVERY: f64 = 60.0;
 
 /// The execution settings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -55,6 +59,18 @@ pub struct RunSettings {
     /// GiB of memory.
     #[cfg_attr(feature = "cli", arg(long, value_name = "GIB", default_value_t = RunSettings::default().memory_limit))]
     pub memory_limit: f64,
+
+    /// Save the film to this checkpoint file (atomically) every
+    /// `checkpoint_every` seconds between passes, on Ctrl-C and at the end;
+    /// `candela resume PATH` continues it. If PATH already holds a
+    /// checkpoint of the same scene and settings, the render continues from
+    /// it; one of another render is refused.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "PATH"))]
+    pub checkpoint: Option<PathBuf>,
+
+    /// Seconds between two checkpoints (with `checkpoint`).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "SECS", default_value_t = RunSettings::default().checkpoint_every))]
+    pub checkpoint_every: f64,
 }
 
 impl Default for RunSettings {
@@ -64,6 +80,8 @@ impl Default for RunSettings {
             tile: DEFAULT_TILE,
             bvh: Bvh::Sah,
             memory_limit: DEFAULT_MEMORY_LIMIT_GIB,
+            checkpoint: None,
+            checkpoint_every: DEFAULT_CHECKPOINT_EVERY,
         }
     }
 }
@@ -84,6 +102,14 @@ impl RunSettings {
             "--memory-limit",
             m,
             "a positive number of GiB",
+        )?;
+        let every = self.checkpoint_every;
+        check(
+            every.is_finite() && every >= 0.0,
+            "checkpoint_every",
+            "--checkpoint-every",
+            every,
+            "a number of seconds >= 0 (0: after every pass)",
         )
     }
 }

@@ -12,6 +12,12 @@ on one machine (and of a plain ``scene.render(...)`` when ``passes=1``).
 Only the scene path, the settings and the returned sums travel: workers load
 the scene themselves (once per process), so the path must be readable on
 every worker.
+
+With the ``checkpoint`` setting the client saves the film as units come back
+(every ``checkpoint_every`` seconds, and at the end), in the CLI's checkpoint
+format; a render given an existing checkpoint of the same scene and settings
+submits only the units it lacks (``candela.distributed.checkpoint``), and
+``python -m candela.distributed --resume PATH`` continues one.
 """
 
 from __future__ import annotations
@@ -23,8 +29,9 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import candela
+from candela.distributed.checkpoint import Checkpointer, passes_done, resume_args
 
-__all__ = ["SettingsRefused", "UNSUPPORTED", "WorkUnit", "plan", "render", "render_unit"]
+__all__ = ["SettingsRefused", "UNSUPPORTED", "WorkUnit", "plan", "render", "render_unit", "resume"]
 
 #: Settings that decide which pixels and samples a unit renders; the planner
 #: owns them.
@@ -127,6 +134,7 @@ def render(
     strict: bool = False,
     unit_fn: Optional[UnitFn] = None,
     on_unit: Optional[Callable[[WorkUnit, "candela.Film"], None]] = None,
+    record: Optional[Dict[str, Any]] = None,
     **settings: Any,
 ) -> "candela.Film":
     """Renders ``scene_path`` on the Dask ``client``'s cluster.
@@ -141,6 +149,11 @@ def render(
     units lost with a dead worker are rerun by the scheduler in any case.
     ``unit_fn`` replaces ``render_unit`` (for tests that inject faults);
     ``on_unit(unit, film)`` is called as each part is added (progress).
+    With ``checkpoint=PATH`` the film is saved there as parts are added
+    (``checkpoint_every`` seconds apart, and at the end or on an error), and
+    an existing checkpoint of the same render is continued (one of another
+    render raises ValueError naming the difference); ``record`` adds fields
+    to the checkpoint's record (the command line's output path).
     """
     for name in _PLANNED:
         if name in settings:
@@ -152,32 +165,47 @@ def render(
     path = os.path.abspath(os.fspath(scene_path))
     # Every setting resolved here, once (defaults < the scene's suggestions
     # < the caller's), so that every unit renders the same settings.
-    settings = _scene(path, strict).settings(**settings)
+    scene = _scene(path, strict)
+    settings = scene.settings(**settings)
     settings.pop("cell")  # each unit is given its own
     width, height, spp = settings["width"], settings["height"], settings["spp"]
     units = plan(width, height, spp, tiles, passes)
+    nx, ny = (tiles, tiles) if isinstance(tiles, int) else tiles
+    saver = None
+    if settings.get("checkpoint") is not None:
+        front = dict(record or {}, scene=path, tiles=[nx, ny], passes=passes, strict=strict)
+        saver = Checkpointer(os.fspath(settings["checkpoint"]), settings["checkpoint_every"], scene, settings, front)
+    unit_settings = dict(settings, checkpoint=None)  # workers write no checkpoints
+    merger = _OrderedMerge(width, height, len(units) // passes, passes)
+    resumed = saver.resume() if saver is not None else None
+    if resumed is not None:
+        merger.start_from(resumed, units)
+        units = [u for u in units if u.pass_index >= merger.next_pass.get(u.cell_index, 0)]
     fn = unit_fn or render_unit
     run = uuid.uuid4().hex[:12]
     start = time.perf_counter()
     futures = [
         client.submit(
-            fn, path, strict, settings, u.cell, u.sample_range,
+            fn, path, strict, unit_settings, u.cell, u.sample_range,
             key=f"candela-unit-{run}-{i}", retries=retries, pure=False,
         )
         for i, u in enumerate(units)
     ]
     by_key = {f.key: u for f, u in zip(futures, units)}
-    merger = _OrderedMerge(width, height, len(units) // passes, passes)
     from distributed import as_completed
 
     try:
         for future, part in as_completed(futures, with_results=True):
             unit = by_key[future.key]
             merger.add(unit, part)
+            if saver is not None:
+                saver.maybe_save(merger.film, time.perf_counter() - start)
             if on_unit is not None:
                 on_unit(unit, part)
     finally:
         client.cancel([f for f in futures if not f.done()])
+        if saver is not None:
+            saver.save(merger.film, time.perf_counter() - start)
     film = merger.result()
     film.set_wall_time(time.perf_counter() - start)
     return film
@@ -195,6 +223,15 @@ class _OrderedMerge:
         self.next_pass: Dict[int, int] = {}
         self.pending: Dict[Tuple[int, int], "candela.Film"] = {}
 
+    def start_from(self, film: "candela.Film", units: List[WorkUnit]) -> None:
+        """Continues ``film`` (a checkpoint's), which holds for each cell the
+        first passes its sample counts show."""
+        first_pass = [u for u in units if u.pass_index == 0]
+        pass_ends = [u.sample_range[1] for u in units if u.cell_index == 0]
+        done = passes_done(film, [u.cell for u in first_pass], pass_ends)
+        self.film = film
+        self.next_pass = {c: n for c, n in enumerate(done)}
+
     def add(self, unit: WorkUnit, part: "candela.Film") -> None:
         key = (unit.cell_index, unit.pass_index)
         if key in self.pending or unit.pass_index < self.next_pass.get(unit.cell_index, 0):
@@ -211,3 +248,13 @@ class _OrderedMerge:
         if self.pending or missing:
             raise RuntimeError("distributed render finished with parts missing")
         return self.film
+
+
+def resume(checkpoint: Union[str, "os.PathLike[str]"], client: Any, **options: Any) -> "candela.Film":
+    """Continues the distributed render saved in ``checkpoint`` on the Dask
+    ``client``'s cluster (same scene, grid and settings; ``options`` are
+    ``render``'s other keywords: ``retries``, ``on_unit``, ...). Returns the
+    whole film, equal bit for bit to the uninterrupted render's."""
+    args = resume_args(os.fspath(checkpoint))
+    return render(args["scene_path"], client, tiles=args["tiles"], passes=args["passes"], strict=args["strict"],
+                  **options, **args["settings"])

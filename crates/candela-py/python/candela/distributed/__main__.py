@@ -7,12 +7,17 @@ as one JSON object with the names of ``Scene.render``'s keywords
 (``candela.settings_help()``); ``candela --dask ADDRESS [flags]`` is the
 command-line front that builds it from the CLI's flags. Settings it cannot
 honour are refused by name with exit code 2.
+
+With ``"checkpoint": PATH`` in the settings the film is saved there as units
+come back; ``--resume PATH`` continues such a render (its scene, grid,
+settings and output file come from the checkpoint).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 
@@ -26,10 +31,11 @@ REFUSED = 2
 def _args(argv):
     p = argparse.ArgumentParser(prog="python -m candela.distributed", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("scene", help="scene file, readable by every worker")
+    p.add_argument("scene", nargs="?", help="scene file, readable by every worker")
+    p.add_argument("--resume", metavar="PATH", help="continue the render saved in this checkpoint")
     p.add_argument("--dask", required=True, metavar="ADDRESS", help="tcp://host:port or local:N")
     p.add_argument("--settings", default="{}", metavar="JSON", help="render settings as a JSON object")
-    p.add_argument("-f", "--file", default="candela.png", help="output .png or .exr")
+    p.add_argument("-f", "--file", help="output .png or .exr [default: candela.png, or the checkpoint's]")
     p.add_argument("--tiles", type=int, nargs=2, default=[4, 4], metavar=("NX", "NY"), help="grid of cells")
     p.add_argument("--passes", type=int, default=1, help="sample ranges per pixel")
     p.add_argument("--retries", type=int, default=3, help="reruns of a unit that raised")
@@ -51,6 +57,15 @@ def _client(address: str):
 def main(argv=None) -> int:
     a = _args(argv)
     try:
+        if a.resume is not None:
+            # The checkpoint says what to render: the command line only how.
+            r = dist.checkpoint.resume_args(a.resume)
+            a.scene, a.tiles, a.passes, a.strict = r["scene_path"], list(r["tiles"]), r["passes"], r["strict"]
+            a.file = a.file or r["output"]
+            a.settings = json.dumps(r["settings"])
+        if a.scene is None:
+            raise ValueError("a scene file (or --resume PATH) is needed")
+        a.file = a.file or "candela.png"
         settings = json.loads(a.settings)
         if not isinstance(settings, dict):
             raise ValueError("--settings: expected a JSON object")
@@ -74,8 +89,13 @@ def main(argv=None) -> int:
                 print(f"\rcandela: {done[0]}/{units} units", end="", file=sys.stderr, flush=True)
 
         start = time.perf_counter()
-        film = dist.render(a.scene, client, tiles=tuple(a.tiles), passes=a.passes, retries=a.retries,
-                           strict=a.strict, on_unit=progress, **settings)
+        record = {"output": os.path.abspath(a.file), "address": a.dask}
+        try:
+            film = dist.render(a.scene, client, tiles=tuple(a.tiles), passes=a.passes, retries=a.retries,
+                               strict=a.strict, on_unit=progress, record=record, **settings)
+        except ValueError as e:  # a checkpoint of another render
+            print(f"candela: error: {e}", file=sys.stderr)
+            return REFUSED
         film.save(a.file, aovs=True, **output)
         if not a.quiet:
             s = film.stats
