@@ -30,6 +30,7 @@ fn full_layers() -> ExrLayers {
             ("stderr".into(), LayerData::Rgb(awkward_image(w, h, 4))),
             ("depth".into(), LayerData::Gray(error)),
         ],
+        info: RenderInfo::default(),
     }
 }
 
