@@ -44,6 +44,12 @@ pub enum Command {
     /// Candela Studio: view and render the scene interactively in the
     /// browser (a local server; prints its URL).
     View(Box<crate::view_cmd::ViewArgs>),
+    /// Compare renders: relMSE, MSE, PSNR, the block z-test, an error heat
+    /// map and, against a reference, the equal-error efficiency ratio.
+    Compare(crate::compare::CompareArgs),
+    /// Add independent renders (different seeds or sample ranges) into one
+    /// EXR, pooling the variance layer.
+    Merge(crate::merge_cmd::MergeArgs),
 }
 
 /// Flags of a render.

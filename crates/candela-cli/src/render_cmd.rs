@@ -93,6 +93,8 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches) -> Result<Outcome> {
         sample_counts: adaptive,
         depth: true,
         cost: true,
+        variance: true,
+        info: output.info(&render, args.scene.as_deref()),
         rate_image: adaptive.then_some(max_samples),
     };
     let written = write_film(&args.output, &output.film, &opts)?;

@@ -192,11 +192,7 @@ pub fn write_exr(path: impl AsRef<Path>, layers: &ExrLayers) -> Result<(), Image
     }
     let attributes = LayerAttributes {
         other: layers.info.to_attributes(),
-        software_name: layers
-            .info
-            .software
-            .as_deref()
-            .and_then(Text::new_or_none),
+        software_name: layers.info.software.as_deref().and_then(Text::new_or_none),
         ..LayerAttributes::default()
     };
     let layer = Layer::new(

@@ -57,7 +57,9 @@ pub fn merge_renders(parts: &[MergePart]) -> Result<ExrLayers, ImageError> {
 
     let rgb_mean = |pick: &dyn Fn(&ExrLayers) -> Option<&RgbImage>| {
         let images: Option<Vec<&RgbImage>> = parts.iter().map(|(_, p)| pick(p)).collect();
-        images.map(|images| weighted_rgb(&images, &counts)).transpose()
+        images
+            .map(|images| weighted_rgb(&images, &counts))
+            .transpose()
     };
     let albedo = rgb_mean(&|p| p.albedo.as_ref())?;
     let normal = rgb_mean(&|p| p.normal.as_ref())?;
@@ -73,13 +75,13 @@ pub fn merge_renders(parts: &[MergePart]) -> Result<ExrLayers, ImageError> {
                 Some(v) => LayerData::Rgb(v.clone()),
                 None => continue,
             },
-            (_, LayerData::Rgb(_)) => {
-                LayerData::Rgb(rgb_mean(&|p| match p.extra.get(index) {
+            (_, LayerData::Rgb(_)) => LayerData::Rgb(
+                rgb_mean(&|p| match p.extra.get(index) {
                     Some((_, LayerData::Rgb(image))) => Some(image),
                     _ => None,
                 })?
-                .ok_or_else(|| layer_mismatch(name))?)
-            }
+                .ok_or_else(|| layer_mismatch(name))?,
+            ),
             (_, LayerData::Gray(_)) => {
                 let images: Vec<&GrayImage> = parts
                     .iter()
@@ -112,7 +114,11 @@ fn check_compatible(
     (a_name, a): (&String, &ExrLayers),
     (b_name, b): (&String, &ExrLayers),
 ) -> Result<(), ImageError> {
-    let refuse = |what: String| Err(ImageError::Incompatible(format!("cannot merge {b_name} into {a_name}: {what}")));
+    let refuse = |what: String| {
+        Err(ImageError::Incompatible(format!(
+            "cannot merge {b_name} into {a_name}: {what}"
+        )))
+    };
     if a.beauty.size() != b.beauty.size() {
         let ((aw, ah), (bw, bh)) = (a.beauty.size(), b.beauty.size());
         return refuse(format!("{b_name} is {bw}x{bh}, {a_name} is {aw}x{ah}"));
@@ -120,7 +126,11 @@ fn check_compatible(
     let (la, lb) = (layer_names(a), layer_names(b));
     if la != lb {
         let only = |x: &[String], y: &[String]| {
-            x.iter().filter(|n| !y.contains(n)).cloned().collect::<Vec<_>>().join(", ")
+            x.iter()
+                .filter(|n| !y.contains(n))
+                .cloned()
+                .collect::<Vec<_>>()
+                .join(", ")
         };
         return refuse(format!(
             "different layers (only in {a_name}: [{}]; only in {b_name}: [{}])",
@@ -192,9 +202,7 @@ fn sample_counts(name: &str, part: &ExrLayers) -> Result<Vec<f64>, ImageError> {
         return Ok(counts.values().iter().map(|&n| n as f64).collect());
     }
     match part.info.spp {
-        Some(spp) if spp.is_uniform() => {
-            Ok(vec![spp.min as f64; part.beauty.pixels().len()])
-        }
+        Some(spp) if spp.is_uniform() => Ok(vec![spp.min as f64; part.beauty.pixels().len()]),
         _ => Err(ImageError::Incompatible(format!(
             "{name}: no per-pixel sample counts (no samples layer, no uniform samplesPerPixel)"
         ))),
@@ -209,7 +217,9 @@ fn pool_beauty(
 ) -> Result<(RgbImage, Option<RgbImage>), ImageError> {
     let (width, height) = beauty[0].size();
     let mut mean = RgbImage::new(width, height)?;
-    let mut variance = variances.map(|_| RgbImage::new(width, height)).transpose()?;
+    let mut variance = variances
+        .map(|_| RgbImage::new(width, height))
+        .transpose()?;
     for i in 0..width * height {
         for c in 0..3 {
             let pooled = (0..beauty.len())

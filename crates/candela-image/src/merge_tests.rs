@@ -20,11 +20,17 @@ fn render(samples: &[Vec<f64>], seed: &str, range: std::ops::Range<u32>) -> ExrL
         variance_of_mean(s.len() as f64, sum, sq)
     });
     let counts = samples.iter().map(|s| s.len() as f32).collect();
-    let depth = samples.iter().map(|s| if s.is_empty() { f32::INFINITY } else { 2.0 }).collect();
+    let depth = samples
+        .iter()
+        .map(|s| if s.is_empty() { f32::INFINITY } else { 2.0 })
+        .collect();
     ExrLayers {
         sample_count: Some(GrayImage::from_values(W, H, counts).unwrap()),
         extra: vec![
-            ("depth".into(), LayerData::Gray(GrayImage::from_values(W, H, depth).unwrap())),
+            (
+                "depth".into(),
+                LayerData::Gray(GrayImage::from_values(W, H, depth).unwrap()),
+            ),
             (VARIANCE_LAYER.into(), LayerData::Rgb(variance)),
         ],
         info: RenderInfo {
@@ -40,7 +46,11 @@ fn render(samples: &[Vec<f64>], seed: &str, range: std::ops::Range<u32>) -> ExrL
 
 fn samples(rng: &mut SplitMix64, per_pixel: impl Fn(usize) -> usize) -> Vec<Vec<f64>> {
     (0..W * H)
-        .map(|i| (0..per_pixel(i)).map(|_| -(1.0 - rng.uniform()).ln() * 0.7).collect())
+        .map(|i| {
+            (0..per_pixel(i))
+                .map(|_| -(1.0 - rng.uniform()).ln() * 0.7)
+                .collect()
+        })
         .collect()
 }
 
@@ -50,7 +60,11 @@ fn merged_parts_equal_the_render_of_all_samples() {
     // Adaptive-like counts: some pixels with 0, 1 or many samples per part.
     let a = samples(&mut rng, |i| [0, 1, 5, 16][i % 4]);
     let b = samples(&mut rng, |i| [0, 3, 1, 16][i % 4]);
-    let both: Vec<Vec<f64>> = a.iter().zip(&b).map(|(x, y)| [x.clone(), y.clone()].concat()).collect();
+    let both: Vec<Vec<f64>> = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| [x.clone(), y.clone()].concat())
+        .collect();
     let merged = merge_renders(&[
         ("a.exr".into(), render(&a, "1", 0..16)),
         ("b.exr".into(), render(&b, "2", 0..16)),
@@ -62,12 +76,20 @@ fn merged_parts_equal_the_render_of_all_samples() {
     for i in 0..W * H {
         let (m, w) = (merged.beauty.pixels()[i][0], whole.beauty.pixels()[i][0]);
         // Each stored f32 is within 2^-24 relative; the merge adds a few roundings.
-        assert!((m - w).abs() <= 4.0 * f32::EPSILON * w.abs(), "pixel {i}: {m} vs {w}");
+        assert!(
+            (m - w).abs() <= 4.0 * f32::EPSILON * w.abs(),
+            "pixel {i}: {m} vs {w}"
+        );
         let (v, u) = (mv.pixels()[i][0], wv.pixels()[i][0]);
-        assert!(v == u || (v - u).abs() <= 1e-5 * u, "pixel {i}: variance {v} vs {u}");
+        assert!(
+            v == u || (v - u).abs() <= 1e-5 * u,
+            "pixel {i}: variance {v} vs {u}"
+        );
     }
     // Depth: +inf (no hit) only where neither part has samples.
-    let Some(LayerData::Gray(depth)) = merged.layer("depth") else { panic!("no depth") };
+    let Some(LayerData::Gray(depth)) = merged.layer("depth") else {
+        panic!("no depth")
+    };
     assert_eq!(depth.values()[0], f32::INFINITY);
     assert_eq!(depth.values()[1], 2.0);
     assert_eq!(merged.info.time_seconds, Some(2.5));
@@ -96,7 +118,10 @@ fn refuses_what_cannot_be_merged() {
     let message = |parts: &[MergePart]| merge_renders(parts).unwrap_err().to_string();
     // The same samples twice.
     let same = message(&[("a.exr".into(), a.clone()), ("b.exr".into(), a.clone())]);
-    assert!(same.contains("a.exr and b.exr hold the same samples"), "{same}");
+    assert!(
+        same.contains("a.exr and b.exr hold the same samples"),
+        "{same}"
+    );
     // Another size.
     let mut small = a.clone();
     small.beauty = RgbImage::new(2, 2).unwrap();
@@ -114,10 +139,16 @@ fn refuses_what_cannot_be_merged() {
     other.info.seed = Some("4".into());
     other.info.scene = Some("bunny.dae".into());
     let scene = message(&[("a.exr".into(), a.clone()), ("d.exr".into(), other)]);
-    assert!(scene.contains("different scenes (box.dae vs bunny.dae)"), "{scene}");
+    assert!(
+        scene.contains("different scenes (box.dae vs bunny.dae)"),
+        "{scene}"
+    );
     // No counts at all.
     let mut plain = ExrLayers::beauty(a.beauty.clone());
     plain.info.spp = None;
     let counts = message(&[("p.exr".into(), plain.clone()), ("q.exr".into(), plain)]);
-    assert!(counts.contains("p.exr: no per-pixel sample counts"), "{counts}");
+    assert!(
+        counts.contains("p.exr: no per-pixel sample counts"),
+        "{counts}"
+    );
 }

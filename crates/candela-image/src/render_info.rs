@@ -96,9 +96,15 @@ impl RenderInfo {
             if spp.is_uniform() {
                 put("samplesPerPixel", AttributeValue::I32(clamp_i32(spp.min)));
             }
-            put("samplesPerPixelMin", AttributeValue::I32(clamp_i32(spp.min)));
+            put(
+                "samplesPerPixelMin",
+                AttributeValue::I32(clamp_i32(spp.min)),
+            );
             put("samplesPerPixelMean", AttributeValue::F64(spp.mean));
-            put("samplesPerPixelMax", AttributeValue::I32(clamp_i32(spp.max)));
+            put(
+                "samplesPerPixelMax",
+                AttributeValue::I32(clamp_i32(spp.max)),
+            );
         }
         if let Some(t) = self.time_seconds {
             put("renderTimeSeconds", AttributeValue::F32(t as f32));

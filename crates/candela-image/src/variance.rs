@@ -125,6 +125,9 @@ mod tests {
         // A single sample pools as one sample; an empty part drops out.
         let one = direct(&[2.0]).pooled(&direct(&[4.0]));
         assert!((one.variance - direct(&[2.0, 4.0]).variance).abs() < 1e-15);
-        assert_eq!(direct(&[]).pooled(&direct(&[3.0, 5.0])), direct(&[3.0, 5.0]));
+        assert_eq!(
+            direct(&[]).pooled(&direct(&[3.0, 5.0])),
+            direct(&[3.0, 5.0])
+        );
     }
 }

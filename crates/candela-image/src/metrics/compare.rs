@@ -204,7 +204,10 @@ fn std_error(variance: &RgbImage) -> Result<RgbImage, ImageError> {
 ///
 /// # Errors
 /// As [`compare_pair`] for sizes.
-pub fn error_heatmap(test: &CompareImage, reference: &CompareImage) -> Result<RgbImage, ImageError> {
+pub fn error_heatmap(
+    test: &CompareImage,
+    reference: &CompareImage,
+) -> Result<RgbImage, ImageError> {
     let errors = rel_mse_image(&test.beauty, &reference.beauty).map_err(|_| {
         ImageError::Incompatible(format!(
             "{} and {} differ in size",

@@ -13,7 +13,11 @@ fn render_file(dir: &TempDir, name: &str, value: f32, variance: f32) -> PathBuf 
     let layers = ExrLayers {
         extra: vec![(VARIANCE_LAYER.into(), LayerData::Rgb(flat(variance)))],
         info: RenderInfo {
-            spp: Some(SppSpread { min: 4, mean: 4.0, max: 4 }),
+            spp: Some(SppSpread {
+                min: 4,
+                mean: 4.0,
+                max: 4,
+            }),
             time_seconds: Some(2.0),
             ..RenderInfo::default()
         },

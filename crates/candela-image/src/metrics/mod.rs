@@ -9,6 +9,7 @@
 //! all of them together for `candela compare` and `candela.compare`.
 
 pub mod compare;
+pub mod comparison;
 mod normal;
 pub mod ztest;
 
@@ -163,7 +164,10 @@ mod tests {
         // (3-2)^2 / (2 + 0.01)^2
         assert!((rel_mse(&test, &reference).unwrap() - 1.0 / (2.01 * 2.01)).abs() < 1e-12);
         let map = rel_mse_image(&test, &reference).unwrap();
-        assert!(map.values().iter().all(|&v| (v as f64 - 1.0 / (2.01 * 2.01)).abs() < 1e-7));
+        assert!(map
+            .values()
+            .iter()
+            .all(|&v| (v as f64 - 1.0 / (2.01 * 2.01)).abs() < 1e-7));
         // MSE 1 against a peak of 1: 0 dB; MSE 0.01: 20 dB.
         assert_eq!(psnr(&test, &reference).unwrap(), 0.0);
         assert!((psnr_of_mse(0.01) - 20.0).abs() < 1e-12);

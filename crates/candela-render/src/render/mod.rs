@@ -16,10 +16,12 @@
 //! [`Film::merge`] into the film of the whole job.
 
 mod control;
+mod info;
 pub mod schedule;
 mod tile;
 
 pub use control::{Cancel, Progress, RenderControl};
+pub use info::integrator_name;
 
 use crate::film::{Adaptive, Film, PixelRect};
 use crate::integrator::IntegratorSettings;
