@@ -4,6 +4,7 @@
 //! of per-pixel sums, which merge by addition (`merge`) and travel as bytes,
 //! which is all `candela.distributed` needs to spread a render over Dask.
 
+mod compare;
 mod film;
 mod scene;
 mod settings;
@@ -109,5 +110,6 @@ fn _candela(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add_function(wrap_pyfunction!(read_image, m)?)?;
     m.add_function(wrap_pyfunction!(settings_help, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::compare_json, m)?)?;
     Ok(())
 }

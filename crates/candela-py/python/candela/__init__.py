@@ -24,10 +24,12 @@ from candela._candela import (
     settings_help,
 )
 
+from candela._compare import compare  # noqa: E402
+
 # After the native names it uses: ``candela.distributed`` is there with a
 # plain ``import candela`` (Dask itself is imported only when used).
 from candela import distributed  # noqa: E402
 
-__all__ = ["Film", "LoadError", "Scene", "demo_scene", "load", "merge", "read_image", "settings_help",
-           "distributed"]
+__all__ = ["Film", "LoadError", "Scene", "compare", "demo_scene", "load", "merge", "read_image",
+           "settings_help", "distributed"]
 __version__ = "0.1.0"

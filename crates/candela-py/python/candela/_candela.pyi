@@ -119,3 +119,14 @@ def read_image(path: _Path) -> npt.NDArray[np.float32]:
 
 def settings_help() -> Dict[str, str]:
     """The help of every render setting, by name (as ``candela --help``)."""
+
+def compare_json(
+    a: Any,
+    b: Any,
+    reference: Any = None,
+    *,
+    block: int = 8,
+    false_alarm: float = 0.01,
+    heatmap: Optional[str] = None,
+) -> str:
+    """The report of ``candela compare --json`` as text (see ``candela.compare``)."""
