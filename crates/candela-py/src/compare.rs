@@ -30,9 +30,12 @@ impl ImageArg<'_> {
                         "{name}: expected an array of shape (H, W, 3), got {shape:?}"
                     )));
                 }
-                let values = array.as_slice().map_err(|e| PyValueError::new_err(e.to_string()))?;
+                let values = array
+                    .as_slice()
+                    .map_err(|e| PyValueError::new_err(e.to_string()))?;
                 let pixels = values.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
-                let image = RgbImage::from_pixels(shape[1], shape[0], pixels).map_err(image_error)?;
+                let image =
+                    RgbImage::from_pixels(shape[1], shape[0], pixels).map_err(image_error)?;
                 Ok(CompareImage::plain(name.clone(), image))
             }
         }

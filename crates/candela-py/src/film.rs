@@ -3,9 +3,9 @@
 use crate::settings::{kwargs_json, value_error};
 use crate::stats::StatsRecord;
 use crate::wire::{self, PlacedFilm};
+use candela_image::RenderInfo;
 use candela_render::film::OutputError;
 use candela_render::film::{write_film, Film, OutputOptions, PixelSums};
-use candela_image::RenderInfo;
 use candela_render::settings::Settings;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};

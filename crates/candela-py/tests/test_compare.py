@@ -55,14 +55,18 @@ def z_test(ma, va, mb, vb, false_alarm=0.01):
         return out
     za = block_stats(ma, va)
     zb = block_stats(mb, vb)
-    z = np.array([(a[0] - b[0]) / np.sqrt(a[1] + b[1]) for a, b in zip(za, zb)])
+    def z_score(diff, var):
+        # The documented convention: equal means give z = 0 even with zero variance (a black block).
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(diff == 0, 0.0, diff / np.sqrt(var))
+    z = np.array([z_score(a[0] - b[0], a[1] + b[1]) for a, b in zip(za, zb)])
     n = ma.shape[0] * ma.shape[1]
     if va is None:
         gva = sum(len(px) * px.var(axis=0, ddof=1) for px in blocks(ma)) / n**2
         gvb = sum(len(px) * px.var(axis=0, ddof=1) for px in blocks(mb)) / n**2
     else:
         gva, gvb = va.reshape(-1, 3).sum(axis=0) / n**2, vb.reshape(-1, 3).sum(axis=0) / n**2
-    gz = (ma.reshape(-1, 3).mean(axis=0) - mb.reshape(-1, 3).mean(axis=0)) / np.sqrt(gva + gvb)
+    gz = z_score(ma.reshape(-1, 3).mean(axis=0) - mb.reshape(-1, 3).mean(axis=0), gva + gvb)
     tests = 3 * len(z) + 3
     threshold = NormalDist().inv_cdf(1 - false_alarm / tests / 2)
     return np.abs(z).max(), np.abs(gz).max(), threshold, int((np.abs(z) > threshold).sum())

@@ -15,6 +15,8 @@ def _arg(image: ImageLike, name: str):
     if isinstance(image, (str, os.PathLike)):
         return os.fspath(image)
     array = np.ascontiguousarray(image, dtype=np.float32)
+    if array.ndim != 3 or array.shape[2] != 3:
+        raise ValueError(f"{name}: expected an array of shape (H, W, 3), got {array.shape}")
     return (array, name)
 
 
