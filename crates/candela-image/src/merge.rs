@@ -216,31 +216,48 @@ fn pool_beauty(
     counts: &[Vec<f64>],
 ) -> Result<(RgbImage, Option<RgbImage>), ImageError> {
     let (width, height) = beauty[0].size();
-    let mut mean = RgbImage::new(width, height)?;
-    let mut variance = variances
-        .map(|_| RgbImage::new(width, height))
+    let no_samples = MeanEstimate {
+        count: 0.0,
+        mean: 0.0,
+        variance: f64::INFINITY,
+    };
+    let pool = |i: usize, c: usize| {
+        let parts = beauty.iter().zip(counts).enumerate();
+        parts.fold(no_samples, |acc, (k, (image, n))| {
+            acc.pooled(&MeanEstimate {
+                count: n[i],
+                mean: image.pixels()[i][c] as f64,
+                variance: variances.map_or(0.0, |v| v[k].pixels()[i][c] as f64),
+            })
+        })
+    };
+    let pooled: Vec<[MeanEstimate; 3]> = (0..width * height)
+        .map(|i| [0, 1, 2].map(|c| pool(i, c)))
+        .collect();
+    // No samples anywhere: the parts' own value (a film's 0).
+    let means = pooled
+        .iter()
+        .zip(beauty[0].pixels())
+        .map(|(p, first)| {
+            [0, 1, 2].map(|c| {
+                if p[c].count > 0.0 {
+                    p[c].mean as f32
+                } else {
+                    first[c]
+                }
+            })
+        })
+        .collect();
+    let mean = RgbImage::from_pixels(width, height, means)?;
+    let variance = variances
+        .map(|_| {
+            let values = pooled
+                .iter()
+                .map(|p| p.map(|e| e.variance as f32))
+                .collect();
+            RgbImage::from_pixels(width, height, values)
+        })
         .transpose()?;
-    for i in 0..width * height {
-        for c in 0..3 {
-            let pooled = (0..beauty.len())
-                .map(|k| MeanEstimate {
-                    count: counts[k][i],
-                    mean: beauty[k].pixels()[i][c] as f64,
-                    variance: variances.map_or(0.0, |v| v[k].pixels()[i][c] as f64),
-                })
-                .reduce(|a, b| a.pooled(&b))
-                .expect("at least one part");
-            // No samples anywhere: the parts' own value (a film's 0).
-            mean.pixels_mut()[i][c] = if pooled.count > 0.0 {
-                pooled.mean as f32
-            } else {
-                beauty[0].pixels()[i][c]
-            };
-            if let Some(v) = variance.as_mut() {
-                v.pixels_mut()[i][c] = pooled.variance as f32;
-            }
-        }
-    }
     Ok((mean, variance))
 }
 
@@ -300,7 +317,9 @@ fn merged_info(parts: &[MergePart], total_counts: &[f64]) -> RenderInfo {
     }
     let sample_range = if seeds.len() == 1 {
         let mut ranges: Option<Vec<_>> = infos.iter().map(|i| i.sample_range.clone()).collect();
-        ranges.as_mut().map(|r| r.sort_by_key(|r| r.start));
+        if let Some(r) = ranges.as_mut() {
+            r.sort_by_key(|r| r.start);
+        }
         ranges.and_then(|r| {
             let contiguous = r.windows(2).all(|w| w[0].end == w[1].start);
             contiguous.then(|| r[0].start..r[r.len() - 1].end)

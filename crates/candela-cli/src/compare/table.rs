@@ -4,6 +4,9 @@ use candela_image::metrics::comparison::{Comparison, Entry};
 use std::fmt::Write;
 use std::path::Path;
 
+/// A row: its label and how to print one entry's cell.
+type Row = (&'static str, Box<dyn Fn(&Entry) -> String>);
+
 /// The report as an aligned table.
 pub fn render(c: &Comparison) -> String {
     let name = |p: &Path| {
@@ -17,7 +20,7 @@ pub fn render(c: &Comparison) -> String {
         .iter()
         .map(|e| format!("{} vs {}", name(&e.test), name(&e.against)))
         .collect();
-    let rows: Vec<(&str, Box<dyn Fn(&Entry) -> String>)> = vec![
+    let mut rows: Vec<Row> = vec![
         (
             "relMSE (pbrt, eps 0.01)",
             Box::new(|e| sci(e.report.rel_mse)),
@@ -28,7 +31,7 @@ pub fn render(c: &Comparison) -> String {
             Box::new(|e| format!("{:.2} dB", e.report.psnr)),
         ),
         ("z-test", Box::new(|e| verdict(e).to_string())),
-        ("  max block |z|", Box::new(|e| worst(e))),
+        ("  max block |z|", Box::new(worst)),
         (
             "  global |z|",
             Box::new(|e| format!("{:.2}", e.report.z.global_abs_z)),
@@ -55,7 +58,6 @@ pub fn render(c: &Comparison) -> String {
             }),
         ),
     ];
-    let mut rows = rows;
     if c.reference.is_some() {
         rows.push((
             "efficiency 1/(relMSE*s)",
@@ -65,7 +67,7 @@ pub fn render(c: &Comparison) -> String {
     let label_width = rows.iter().map(|(l, _)| l.len()).max().unwrap_or(0);
     let cells: Vec<Vec<String>> = rows
         .iter()
-        .map(|(_, f)| c.entries.iter().map(|e| f(e)).collect())
+        .map(|(_, f)| c.entries.iter().map(f).collect())
         .collect();
     let widths: Vec<usize> = (0..c.entries.len())
         .map(|i| {
