@@ -47,6 +47,12 @@ pub enum Command {
     /// Continue a render from its checkpoint (`--checkpoint PATH`) and write
     /// the outputs the original command asked for.
     Resume(crate::resume_cmd::ResumeArgs),
+    /// Compare renders: relMSE, MSE, PSNR, the block z-test, an error heat
+    /// map and, against a reference, the equal-error efficiency ratio.
+    Compare(crate::compare::CompareArgs),
+    /// Add independent renders (different seeds or sample ranges) into one
+    /// EXR, pooling the variance layer.
+    Merge(crate::merge_cmd::MergeArgs),
 }
 
 /// Flags of a render.

@@ -6,7 +6,9 @@
 
 mod args;
 mod bench;
+mod compare;
 mod dask;
+mod merge_cmd;
 mod progress;
 mod render_cmd;
 mod report;
@@ -19,6 +21,8 @@ fn main() -> ExitCode {
     let (cli, matches) = args::parse();
     let result = match cli.command {
         Some(args::Command::Bench(cmd)) => bench::run(cmd).map(|()| render_cmd::Outcome::Done),
+        Some(args::Command::Compare(cmd)) => compare::run(&cmd).map(|()| render_cmd::Outcome::Done),
+        Some(args::Command::Merge(cmd)) => merge_cmd::run(&cmd).map(|()| render_cmd::Outcome::Done),
         Some(args::Command::View(cmd)) => {
             view_cmd::run(&cmd, &matches).map(|()| render_cmd::Outcome::Done)
         }

@@ -158,6 +158,8 @@ pub fn render_job(
         sample_counts: adaptive,
         depth: true,
         cost: true,
+        variance: true,
+        info: output.info(&render, job.scene.as_deref()),
         rate_image: adaptive.then_some(max_samples),
     };
     let written = write_film(&job.output, &output.film, &opts)?;

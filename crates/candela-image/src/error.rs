@@ -72,6 +72,10 @@ pub enum ImageError {
         /// Requested height.
         height: usize,
     },
+    /// Files that cannot be combined (different sizes, layers, scenes, or
+    /// the same samples twice); the message names the files.
+    #[error("{0}")]
+    Incompatible(String),
     /// A parameter is outside its meaningful range (e.g. a zero block size).
     #[error("invalid argument: {0}")]
     InvalidArgument(String),

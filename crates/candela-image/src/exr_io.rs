@@ -11,6 +11,7 @@
 //! | albedo | `albedo.R`, `albedo.G`, `albedo.B` | first-hit albedo in `[0, 1]` |
 //! | normal | `normal.R`, `normal.G`, `normal.B` | first-hit normal, components X, Y, Z in `[-1, 1]` |
 //! | sample count | `samples` | samples taken per pixel |
+//! | variance | `variance.R`, `variance.G`, `variance.B` | variance of the pixel's mean estimate ([`crate::variance`]) |
 //! | extra RGB layer `name` | `name.R`, `name.G`, `name.B` | anything, e.g. a standard error |
 //! | extra scalar layer `name` | `name` | anything |
 //!
@@ -20,6 +21,17 @@
 //! `R/G/B` rather than `X/Y/Z` so every three-channel layer reads the same
 //! way. Open Image Denoise itself takes separate buffers, so a caller hands
 //! it these layers one by one.
+//!
+//! The header carries [`RenderInfo`] (sample counts, render time, seed,
+//! ...; see [`crate::render_info`] for the attribute names).
+//!
+//! # Reading other programs' files
+//! The beauty image is the unprefixed `R`, `G`, `B` channels (what pbrt-v4
+//! and Mitsuba 3 write), else a luminance-only `Y`, else the one RGB layer of
+//! the file (`<layer>.R/G/B`, e.g. Blender's `ViewLayer.Combined.R`); with
+//! several RGB layers and no bare one, a layer called `Combined`, `beauty`,
+//! `rgb`, `color` or `image` (case-insensitive, last name component) is
+//! taken. An alpha channel `A` is kept as a scalar layer.
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -29,7 +41,10 @@ use exr::prelude::{
     LayerAttributes, SmallVec, Text, Vec2, WritableImage,
 };
 
-use crate::{atomic_write, GrayImage, ImageError, RgbImage};
+use crate::{atomic_write, GrayImage, ImageError, RenderInfo, RgbImage};
+
+/// The name of the variance layer (`variance.R/G/B`).
+pub const VARIANCE_LAYER: &str = "variance";
 
 /// The data of an extra layer: three colour channels or one scalar.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,6 +72,8 @@ pub struct ExrLayers {
     /// statistical comparison). Names must be ASCII and distinct from the
     /// channels above.
     pub extra: Vec<(String, LayerData)>,
+    /// Header metadata: how the image was rendered.
+    pub info: RenderInfo,
 }
 
 impl ExrLayers {
@@ -68,6 +85,21 @@ impl ExrLayers {
             normal: None,
             sample_count: None,
             extra: Vec::new(),
+            info: RenderInfo::default(),
+        }
+    }
+
+    /// The extra layer called `name`, if any.
+    pub fn layer(&self, name: &str) -> Option<&LayerData> {
+        self.extra.iter().find(|(n, _)| n == name).map(|(_, d)| d)
+    }
+
+    /// The per-pixel variance of the mean (layer [`VARIANCE_LAYER`]), if
+    /// the file has it.
+    pub fn variance(&self) -> Option<&RgbImage> {
+        match self.layer(VARIANCE_LAYER) {
+            Some(LayerData::Rgb(image)) => Some(image),
+            _ => None,
         }
     }
 
@@ -158,9 +190,14 @@ pub fn write_exr(path: impl AsRef<Path>, layers: &ExrLayers) -> Result<(), Image
         })?;
         channels.push(AnyChannel::new(text, FlatSamples::F32(values)));
     }
+    let attributes = LayerAttributes {
+        other: layers.info.to_attributes(),
+        software_name: layers.info.software.as_deref().and_then(Text::new_or_none),
+        ..LayerAttributes::default()
+    };
     let layer = Layer::new(
         Vec2(width, height),
-        LayerAttributes::default(),
+        attributes,
         Encoding::SMALL_LOSSLESS,
         AnyChannels::sort(channels),
     );
@@ -193,7 +230,11 @@ pub fn read_exr_layers(path: impl AsRef<Path>) -> Result<ExrLayers, ImageError> 
         source,
     };
     let image = read_first_flat_layer_from_file(path).map_err(|e| read_err(e.into()))?;
+    let mut attributes = image.attributes.other;
     let layer = image.layer_data;
+    attributes.extend(layer.attributes.other);
+    let software = layer.attributes.software_name.map(|t| t.to_string());
+    let info = RenderInfo::from_attributes(&attributes, software);
     let (width, height) = (layer.size.width(), layer.size.height());
     let mut channels: Vec<(String, Vec<f32>)> = layer
         .channel_data
@@ -208,7 +249,11 @@ pub fn read_exr_layers(path: impl AsRef<Path>) -> Result<ExrLayers, ImageError> 
             Some(y) => {
                 RgbImage::from_pixels(width, height, y.into_iter().map(|v| [v; 3]).collect())?
             }
-            None => return Err(read_err("no R, G, B or Y channels".into())),
+            None => match beauty_layer_prefix(&channels) {
+                Some(prefix) => take_rgb(&mut channels, &prefix, width, height)?
+                    .ok_or_else(|| read_err("no R, G, B or Y channels".into()))?,
+                None => return Err(read_err("no R, G, B or Y channels".into())),
+            },
         },
     };
     let albedo = take_rgb(&mut channels, "albedo", width, height)?;
@@ -240,6 +285,27 @@ pub fn read_exr_layers(path: impl AsRef<Path>) -> Result<ExrLayers, ImageError> 
         normal,
         sample_count,
         extra,
+        info,
+    })
+}
+
+/// The layer prefix of the beauty image in a file without bare `R`, `G`,
+/// `B`: the only RGB layer, or the one with a conventional name.
+fn beauty_layer_prefix(channels: &[(String, Vec<f32>)]) -> Option<String> {
+    let has = |name: String| channels.iter().any(|(c, _)| *c == name);
+    let mut prefixes: Vec<String> = channels
+        .iter()
+        .filter_map(|(name, _)| name.strip_suffix(".R").map(str::to_string))
+        .filter(|p| has(format!("{p}.G")) && has(format!("{p}.B")))
+        .collect();
+    prefixes.dedup();
+    if prefixes.len() == 1 {
+        return prefixes.pop();
+    }
+    const NAMES: [&str; 5] = ["combined", "beauty", "rgb", "color", "image"];
+    prefixes.into_iter().find(|p| {
+        let last = p.rsplit('.').next().unwrap_or(p).to_ascii_lowercase();
+        NAMES.contains(&last.as_str())
     })
 }
 

@@ -30,6 +30,7 @@ fn full_layers() -> ExrLayers {
             ("stderr".into(), LayerData::Rgb(awkward_image(w, h, 4))),
             ("depth".into(), LayerData::Gray(error)),
         ],
+        info: RenderInfo::default(),
     }
 }
 
@@ -142,4 +143,70 @@ fn reading_a_missing_or_corrupt_file_names_it() {
     let err = read_exr(&corrupt).unwrap_err();
     assert!(matches!(err, ImageError::Read { .. }));
     assert!(err.to_string().contains("corrupt.exr"));
+}
+
+/// Writes an EXR with exactly these channels (half floats, as Mitsuba and
+/// Blender often write), each filled with `value(channel index)`.
+fn foreign_exr(path: &Path, names: &[&str], value: impl Fn(usize) -> f32) {
+    use exr::prelude::f16;
+    let (w, h) = (3, 2);
+    let channels = names
+        .iter()
+        .enumerate()
+        .map(|(i, name)| {
+            let samples = vec![f16::from_f32(value(i)); w * h];
+            AnyChannel::new(Text::from(*name), FlatSamples::F16(samples))
+        })
+        .collect();
+    let layer = Layer::new(
+        Vec2(w, h),
+        LayerAttributes::default(),
+        Encoding::UNCOMPRESSED,
+        AnyChannels::sort(channels),
+    );
+    Image::from_layer(layer).write().to_file(path).unwrap();
+}
+
+#[test]
+fn other_programs_beauty_channels_are_found() {
+    let dir = TempDir::new("exr-foreign");
+    // Mitsuba 3 / pbrt-v4: bare R, G, B (and A, kept as a scalar layer).
+    let plain = dir.path().join("plain.exr");
+    foreign_exr(&plain, &["R", "G", "B", "A"], |i| [0.25, 0.5, 0.75, 1.0][i]);
+    let layers = read_exr_layers(&plain).unwrap();
+    assert_eq!(layers.beauty.pixels()[0], [0.25, 0.5, 0.75]);
+    assert!(matches!(layers.layer("A"), Some(LayerData::Gray(_))));
+    assert_eq!(layers.info, RenderInfo::default());
+    // Blender's multilayer naming: the Combined layer among others.
+    let blender = dir.path().join("blender.exr");
+    let names = [
+        "ViewLayer.Combined.R",
+        "ViewLayer.Combined.G",
+        "ViewLayer.Combined.B",
+        "ViewLayer.Denoising Albedo.R",
+        "ViewLayer.Denoising Albedo.G",
+        "ViewLayer.Denoising Albedo.B",
+    ];
+    foreign_exr(&blender, &names, |i| if i < 3 { 2.0 } else { 0.5 });
+    assert_eq!(read_exr(&blender).unwrap().pixels()[0], [2.0; 3]);
+    // A single prefixed RGB layer, whatever its name.
+    let single = dir.path().join("single.exr");
+    foreign_exr(
+        &single,
+        &["image.R", "image.G", "image.B", "depth.Z"],
+        |i| i as f32,
+    );
+    assert_eq!(read_exr(&single).unwrap().pixels()[0], [0.0, 1.0, 2.0]);
+    // Two RGB layers with no conventional name: no guess, an error naming the file.
+    let ambiguous = dir.path().join("ambiguous.exr");
+    foreign_exr(
+        &ambiguous,
+        &["a.R", "a.G", "a.B", "b.R", "b.G", "b.B"],
+        |_| 1.0,
+    );
+    let err = read_exr(&ambiguous).unwrap_err().to_string();
+    assert!(
+        err.contains("ambiguous.exr") && err.contains("no R, G, B"),
+        "{err}"
+    );
 }

@@ -3,6 +3,7 @@
 use crate::settings::{kwargs_json, value_error};
 use crate::stats::StatsRecord;
 use crate::wire::{self, PlacedFilm};
+use candela_image::RenderInfo;
 use candela_render::film::OutputError;
 use candela_render::film::{write_film, Film, OutputOptions, PixelSums};
 use candela_render::settings::Settings;
@@ -170,7 +171,8 @@ impl PyFilm {
     }
 
     /// Writes the image: `.png` (tone-mapped 8-bit sRGB, as the CLI) or
-    /// `.exr` (linear float; plus a `samples` layer when `samples`, and the
+    /// `.exr` (linear float with the `variance` layer of each pixel's mean
+    /// and the `samples` layer it needs, the render time in the header; the
     /// albedo and normal layers denoisers read, the depth and the cost
     /// layers when `aovs`). The output
     /// settings (`exposure`, `tone`) may be given as keywords, as to
@@ -193,6 +195,12 @@ impl PyFilm {
             sample_counts: samples,
             depth: aovs,
             cost: aovs,
+            variance: true,
+            info: RenderInfo {
+                time_seconds: Some(self.inner.stats.wall_time_s).filter(|&t| t > 0.0),
+                software: Some(RenderInfo::candela_software()),
+                ..RenderInfo::default()
+            },
             rate_image: None,
         };
         py.detach(|| write_film(&path, &self.inner.film, &opts))

@@ -5,6 +5,7 @@
 //! which is all `candela.distributed` needs to spread a render over Dask.
 
 mod checkpoint;
+mod compare;
 mod film;
 mod scene;
 mod settings;
@@ -112,5 +113,6 @@ fn _candela(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(settings_help, m)?)?;
     m.add_function(wrap_pyfunction!(checkpoint::write_checkpoint, m)?)?;
     m.add_function(wrap_pyfunction!(checkpoint::read_checkpoint, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::compare_json, m)?)?;
     Ok(())
 }

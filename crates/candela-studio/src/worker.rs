@@ -313,6 +313,8 @@ impl Worker {
             sample_counts: true,
             depth: true,
             cost: true,
+            variance: true,
+            info: Default::default(),
             rate_image: adaptive.then_some(last.header.target_spp),
         };
         let written = write_film(&path, &last.film, &opts).map_err(|e| e.to_string())?;

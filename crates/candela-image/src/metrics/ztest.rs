@@ -28,6 +28,9 @@
 //!   so). From independent batches ([`BlockStats::from_batches`]) the
 //!   variance is estimated from their spread, which needs no such assumption
 //!   but enough batches (≥ 16) for the normal threshold to be accurate.
+//!   From the pixels alone ([`BlockStats::from_block_spread`], for images
+//!   without a variance layer) the variance comes from the spread of each
+//!   block's pixels: conservative where a block holds image structure.
 //! - The threshold is Bonferroni-corrected over all tests (every block and
 //!   channel, plus the three global ones), so an unbiased pair fails with
 //!   probability at most the chosen false-alarm rate.
@@ -359,6 +362,9 @@ impl ZTest {
         write_png_display(path, &self.difference_image()?)
     }
 }
+
+#[path = "ztest_spread.rs"]
+mod spread;
 
 #[cfg(test)]
 #[path = "ztest_tests.rs"]

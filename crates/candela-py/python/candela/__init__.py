@@ -26,10 +26,12 @@ from candela._candela import (
     write_checkpoint,
 )
 
+from candela._compare import compare  # noqa: E402
+
 # After the native names it uses: ``candela.distributed`` is there with a
 # plain ``import candela`` (Dask itself is imported only when used).
 from candela import distributed  # noqa: E402
 
-__all__ = ["Film", "LoadError", "Scene", "demo_scene", "load", "merge", "read_checkpoint", "read_image",
-           "settings_help", "write_checkpoint", "distributed"]
+__all__ = ["Film", "LoadError", "Scene", "compare", "demo_scene", "load", "merge", "read_checkpoint",
+           "read_image", "settings_help", "write_checkpoint", "distributed"]
 __version__ = "0.1.0"

@@ -132,3 +132,14 @@ def read_checkpoint(path: _Path, *, scene_hash: Optional[str] = None,
     """Reads a checkpoint: ``settings``, ``front``, ``elapsed_s``, ``scene_hash``
     and ``film``; with ``scene_hash`` and ``settings``, raises ValueError
     naming what differs if it is of another render."""
+
+def compare_json(
+    a: Any,
+    b: Any,
+    reference: Any = None,
+    *,
+    block: int = 8,
+    false_alarm: float = 0.01,
+    heatmap: Optional[str] = None,
+) -> str:
+    """The report of ``candela compare --json`` as text (see ``candela.compare``)."""

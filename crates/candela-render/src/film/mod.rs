@@ -136,6 +136,12 @@ impl Film {
         self.rgb(PixelSums::std_error)
     }
 
+    /// Variance of each pixel's mean radiance, per channel (+inf below two
+    /// samples): the EXR `variance` layer.
+    pub fn variance(&self) -> RgbImage {
+        self.rgb(|p| p.variance_of_mean().as_vec3())
+    }
+
     /// Samples taken per pixel, as an image.
     pub fn sample_count_image(&self) -> GrayImage {
         self.gray(|p| p.count as f32)

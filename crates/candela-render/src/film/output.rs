@@ -3,10 +3,16 @@
 //! radiance with the layers asked for; with adaptive sampling the CS184
 //! sample-rate image is written beside the output. Every file is written
 //! atomically, so a failed write leaves no file.
+//!
+//! An EXR can carry the per-pixel variance of the mean (`variance.R/G/B`,
+//! with the `samples` layer it needs to be merged) and, in its header, how
+//! it was made ([`RenderInfo`]: spp, time, seed, integrator, scene); the
+//! sample spread is taken from the film itself.
 
 use super::{CostMeasure, Film};
 use candela_image::{
-    rate_image, write_exr, write_png, write_png_display, ExrLayers, ImageError, LayerData, ToneMap,
+    rate_image, write_exr, write_png, write_png_display, ExrLayers, ImageError, LayerData,
+    RenderInfo, SppSpread, ToneMap, VARIANCE_LAYER,
 };
 use std::path::{Path, PathBuf};
 
@@ -49,6 +55,12 @@ pub struct OutputOptions {
     /// EXR: the cost layers `cost.nodes` and `cost.prims`, BVH nodes
     /// visited and primitive tests per sample ([`Film::cost`]).
     pub cost: bool,
+    /// EXR: a `variance` layer, the variance of each pixel's mean
+    /// ([`Film::variance`]), and with it the `samples` layer (`candela merge`
+    /// needs both).
+    pub variance: bool,
+    /// EXR header metadata; its `spp` is filled from the film when `None`.
+    pub info: RenderInfo,
     /// Also write `<stem>_rate.png`, the CS184 sample-rate image, with this
     /// sample count shown as red (adaptive sampling).
     pub rate_image: Option<u32>,
@@ -101,11 +113,21 @@ pub fn write_film(
                     extra.push((name.to_string(), LayerData::Gray(film.cost(measure))));
                 }
             }
+            if opts.variance {
+                extra.push((VARIANCE_LAYER.to_string(), LayerData::Rgb(film.variance())));
+            }
+            let counts = film.pixels.iter().map(|p| p.count as f64);
+            let info = RenderInfo {
+                spp: opts.info.spp.or_else(|| SppSpread::of_counts(counts)),
+                ..opts.info.clone()
+            };
             let layers = ExrLayers {
                 albedo: opts.aovs.then(|| film.albedo()),
                 normal: opts.aovs.then(|| film.normal()),
-                sample_count: opts.sample_counts.then(|| film.sample_count_image()),
+                sample_count: (opts.sample_counts || opts.variance)
+                    .then(|| film.sample_count_image()),
                 extra,
+                info,
                 ..ExrLayers::beauty(film.resolve())
             };
             write_exr(path, &layers)

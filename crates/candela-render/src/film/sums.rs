@@ -1,6 +1,7 @@
 //! The sums one pixel keeps.
 
 use candela_bvh::TraversalStats;
+use candela_image::variance::variance_of_mean;
 use glam::{DVec3, Vec3};
 
 /// Rec. 709 luminance of a linear RGB colour: the "illuminance" whose
@@ -177,17 +178,22 @@ impl PixelSums {
         }
     }
 
+    /// Variance of the mean radiance per channel, `s² / n` with the
+    /// `n − 1` sample variance ([`candela_image::variance`]); +inf with
+    /// fewer than two samples.
+    pub fn variance_of_mean(&self) -> DVec3 {
+        let n = self.count as f64;
+        let v = |c: usize| variance_of_mean(n, self.radiance[c], self.radiance_sq[c]);
+        DVec3::new(v(0), v(1), v(2))
+    }
+
     /// Standard error of the mean radiance per channel,
     /// `sqrt(sample variance / n)`; zero with fewer than two samples.
     pub fn std_error(&self) -> Vec3 {
         if self.count < 2 {
             return Vec3::ZERO;
         }
-        let n = self.count as f64;
-        let mean = self.radiance / n;
-        // Clamped: rounding can make the difference slightly negative.
-        let var = ((self.radiance_sq - self.radiance * mean) / (n - 1.0)).max(DVec3::ZERO);
-        (var / n).sqrt().as_vec3()
+        self.variance_of_mean().sqrt().as_vec3()
     }
 
     fn average(&self, sum: DVec3) -> Vec3 {

@@ -17,11 +17,13 @@
 
 mod control;
 mod resume;
+mod info;
 pub mod schedule;
 mod tile;
 
 pub use control::{Cancel, Progress, RenderControl};
 pub use resume::{Continuation, PassEnd};
+pub use info::integrator_name;
 
 use crate::film::{Adaptive, Film, PixelRect};
 use crate::integrator::IntegratorSettings;
