@@ -172,9 +172,7 @@ mod tests {
         assert_eq!(a.pixels[1].count, 3);
         let l0 = a.layer_named("bounce_0").expect("layer 0");
         let l1 = a.layer(1);
-        let close = |got: [f32; 3], want: [f32; 3]| {
-            (0..3).all(|c| (got[c] - want[c]).abs() < 1e-6)
-        };
+        let close = |got: [f32; 3], want: [f32; 3]| (0..3).all(|c| (got[c] - want[c]).abs() < 1e-6);
         assert!(close(l0.pixels()[1], [1.0, 4.0 / 3.0, 5.0 / 3.0]));
         assert!(close(l1.pixels()[1], [5.0 / 3.0; 3]));
         // Pixel 0 took no samples: black, not NaN.
