@@ -30,6 +30,20 @@ use common::agreement_scenes::*;
 const HEMISPHERE_POINT_LIGHT: &str =
     "uniform hemisphere rays never hit a point light (no area): its light is missing";
 
+/// Why light sampling alone does not converge at test budgets on a nearly
+/// specular lobe. It is unbiased, but the light the glossy silver sphere
+/// (Beckmann α = 0.025) reflects onto the walls is found only when a light
+/// sample falls into the narrow lobe: rarely, and then hugely. Below the
+/// samples needed for those events to average out, block means are far
+/// from normal and most batches miss the rare mass: measured, 21 of 90
+/// block-channels darker than the reference at 8 spp per batch, 3 at 32
+/// spp, while the image means agree (global |z| 0.3 and 1.1). The missing
+/// mass shrinking with samples is a heavy tail, not a bias (which would
+/// fail more blocks with more samples); MIS, which finds that light by BSDF
+/// sampling, passes on the same scene.
+const LIGHT_SAMPLING_NEAR_SPECULAR: &str = "light sampling alone on a Beckmann alpha = 0.025 \
+     lobe is heavy-tailed: block means are far from normal at test budgets";
+
 /// The table CI runs.
 fn ci_cases() -> Vec<Case> {
     vec![
@@ -124,7 +138,7 @@ fn long_cases() -> Vec<Case> {
             scene: || cs184_box("CBspheres_microfacet_al_ag.dae"),
             max_depth: 4,
             spp: 8,
-            excluded: &[],
+            excluded: &[(Method::LightSampling, LIGHT_SAMPLING_NEAR_SPECULAR)],
             seed: 102,
         },
         Case {
