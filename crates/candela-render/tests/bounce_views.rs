@@ -207,3 +207,33 @@ fn fewer_bounce_layers_than_bounces_keep_the_first_ones() {
         assert_eq!(first.layers.pixel(i), &all.layers.pixel(i)[..2]);
     }
 }
+
+#[test]
+fn clamped_bounce_layers_still_add_up_to_the_image() {
+    // The clamp scales a sample's layers by the factor it scaled the
+    // sample by, so the layers still split the (clamped) image.
+    let scene = scene();
+    let sampler = SamplerKind::Sobol;
+    let clamped = layered(
+        &scene,
+        with(LightingMode::Mis, |s| {
+            s.bounce_layers = Some(DEPTH);
+            s.clamp = Some(0.3);
+        }),
+        sampler,
+        2,
+        8,
+    );
+    let free = film(&scene, with(LightingMode::Mis, |_| {}), sampler);
+    let bitten = (clamped.pixels.iter().zip(&free.pixels))
+        .filter(|(c, f)| c.radiance != f.radiance)
+        .count();
+    assert!(
+        bitten > 0,
+        "the clamp changed nothing: the test shows nothing"
+    );
+    let total: Vec<DVec3> = (0..clamped.pixels.len())
+        .map(|i| clamped.layers.pixel(i).iter().sum())
+        .collect();
+    assert_same("clamped layers", &clamped, total);
+}
