@@ -4,7 +4,8 @@
 #   - uniform hemisphere sampling vs light sampling (direct lighting)
 #   - 1, 4, 16 and 64 light rays per area light at 1 sample per pixel
 #   - direct-only vs indirect-only illumination
-#   - light after exactly k bounces (-o 0) and up to k bounces, k = 0..5 and 100
+#   - light after exactly k bounces (-o 0) and up to k bounces, k = 0..5 and 100,
+#     and bounces 0..5 as the EXR layers of one render (--bounce-layers 5)
 #   - 1 to 1024 samples per pixel
 #
 # usage: examples/cs184_writeup.sh [OUT_DIR] [WIDTH HEIGHT]
@@ -43,6 +44,9 @@ for m in 0 1 2 3 4 5 100; do
   candela -s 1024 -l 1 -m "$m" -o 0 -f "$out/bunny_only_bounce_$m.png" "$bunny"
   candela -s 1024 -l 1 -m "$m" -o 1 -f "$out/bunny_up_to_bounce_$m.png" "$bunny"
 done
+
+echo "bounces 0..5 as the layers bounce_0 ... bounce_5 of one EXR (1024 spp)"
+candela -s 1024 -l 1 -m 5 --bounce-layers 5 -f "$out/bunny_bounce_layers.exr" "$bunny"
 
 echo "samples per pixel"
 for s in 1 2 4 8 16 64 1024; do

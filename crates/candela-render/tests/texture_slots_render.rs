@@ -7,11 +7,9 @@
 //!   shows the sky exactly where it is cut out, so the image mean is the
 //!   open fraction: 2/3 for a (1, 0, 0) stripe mask with cutoff 1/2, 1 −
 //!   mean(alpha) for stochastic opacity;
-//! - **a textured lamp seen through a cut-out**: hemisphere, light and MIS
-//!   estimators agree (block z-test) on a floor lit by an emission-textured
-//!   quad through a stochastic-opacity screen, so light sampling evaluates
-//!   the texture at its sampled points without bias and shadow rays pass
-//!   the cut-outs exactly as bounce rays do;
+//! - **a textured lamp seen through a cut-out**: every estimator agrees on
+//!   it in the estimator-agreement suite (`agreement_suite.rs`, scene
+//!   `common::agreement_scenes::textured_lamp_through_a_cut_out_screen`);
 //! - **a flat normal map** ((0.5, 0.5, 1) everywhere) renders the image bit
 //!   for bit as without one, with the triangles' own tangent frames and
 //!   with per-vertex tangents alike;
@@ -32,7 +30,6 @@ use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{
     BsdfDesc, ColorSpace, InstanceDesc, MaterialDesc, MeshDesc, SceneDesc, TextureRef,
 };
-use common::agreement::{assert_estimators_agree, Agreement};
 use glam::{Vec2, Vec3};
 use std::path::Path;
 use std::sync::Arc;
@@ -207,57 +204,6 @@ fn a_constant_opacity_lets_its_complement_through() {
     masked.textures.opacity_constant = Some(0.3);
     masked.textures.opacity_cutoff = Some(0.5);
     assert_image_mean("constant mask", &build(&view_filling(masked), true), 1, 1.0);
-}
-
-#[test]
-fn a_textured_lamp_through_a_cut_out_screen_agrees_between_estimators() {
-    let dir = candela_testkit::TempDir::new("textured-lamp");
-    let glow = dir.join("glow.exr");
-    let glow_values: Vec<f32> = (0..16)
-        .map(|k| 0.2 + 3.0 * ((k * 5) % 16) as f32 / 15.0)
-        .collect();
-    grey_exr(&glow, 4, 4, &glow_values);
-    let holes = dir.join("holes.exr");
-    grey_exr(&holes, 3, 2, &[0.0, 1.0, 0.4, 0.8, 0.1, 1.0]);
-    let floor = common::material(
-        "floor",
-        BsdfDesc::Diffuse {
-            albedo: Vec3::splat(0.8),
-        },
-        None,
-    );
-    let mut lamp = common::material("lamp", BsdfDesc::Black, Some(Vec3::ONE));
-    lamp.textures.emission = Some(TextureRef::new(&glow, ColorSpace::Linear));
-    let mut screen = common::material(
-        "screen",
-        BsdfDesc::Diffuse {
-            albedo: Vec3::splat(0.5),
-        },
-        None,
-    );
-    screen.textures.opacity = Some(TextureRef::new(&holes, ColorSpace::Linear));
-    let desc = scene_of(
-        vec![
-            // Floor facing the camera, lamp above the view facing down, a
-            // screen between them (partly in view).
-            quad(Vec3::new(-1.5, -1.5, -2.5), Vec3::X * 3.0, Vec3::Y * 3.0, 0),
-            quad(Vec3::new(-0.8, 1.6, -2.4), Vec3::X * 1.6, Vec3::Z * 1.4, 1),
-            quad(Vec3::new(-1.2, 0.9, -2.4), Vec3::X * 2.4, Vec3::Z * 1.8, 2),
-        ],
-        vec![floor, lamp, screen],
-    );
-    let scene = build(&desc, false);
-    assert_eq!(scene.lights.lights().len(), 2, "two emissive triangles");
-    assert_estimators_agree(
-        &scene,
-        &Agreement {
-            label: "textured lamp through cut-outs",
-            max_bounces: 2,
-            spp: [64, 16, 16],
-            roulette_from: None,
-            seed_base: 7100,
-        },
-    );
 }
 
 #[test]

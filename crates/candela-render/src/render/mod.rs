@@ -26,7 +26,7 @@ pub use resume::{Continuation, PassEnd};
 pub use info::integrator_name;
 
 use crate::film::{Adaptive, Film, PixelRect};
-use crate::integrator::IntegratorSettings;
+use crate::integrator::{layer_names, IntegratorSettings};
 use crate::sampling::SamplerKind;
 use crate::scene::Scene;
 use crate::stats::RenderStats;
@@ -179,12 +179,21 @@ pub fn render_from(
         .build()?;
     let range = settings.samples();
     let start = Instant::now();
+    let names = layer_names(&settings.integrator);
+    if let Some(film) = from.start {
+        if film.layers.names() != names.as_slice() {
+            return Err(RenderError::Settings(format!(
+                "cannot continue a film with layers {:?} in a render with layers {names:?}",
+                film.layers.names()
+            )));
+        }
+    }
     let mut tiles: Vec<TileState> = region
         .tiles(settings.tile)
         .into_iter()
         .map(|rect| match from.start {
-            Some(film) => TileState::from_film(rect, film, settings),
-            None => TileState::new(rect),
+            Some(film) => TileState::from_film(rect, film, settings, &names),
+            None => TileState::new(rect, &names),
         })
         .collect();
     let mut stats = RenderStats {
@@ -236,6 +245,7 @@ pub fn render_from(
             after_pass(&PassEnd {
                 tiles: &tiles,
                 size,
+                layer_names: &names,
                 stats: &stats,
                 elapsed: start.elapsed(),
             });
@@ -248,7 +258,7 @@ pub fn render_from(
             None => break StopReason::TimeBudget,
         }
     };
-    let film = assemble(&tiles, size.0, size.1);
+    let film = assemble(&tiles, size.0, size.1, names);
     stats.converged_pixels = tiles.iter().map(TileState::converged_count).sum();
     stats.render_time = start.elapsed();
     Ok(RenderOutput { film, stats, stop })
@@ -299,11 +309,15 @@ impl PassContext<'_> {
 
 /// The full-frame film from the tiles' sums; pixels outside every tile
 /// (outside the cell) stay empty.
-fn assemble(tiles: &[TileState], width: u32, height: u32) -> Film {
-    let mut film = Film::new(width, height);
+fn assemble(tiles: &[TileState], width: u32, height: u32, layer_names: Vec<String>) -> Film {
+    let mut film = Film::with_layers(width, height, layer_names);
     for tile in tiles {
-        for ((x, y), sums) in tile.rect.pixels().zip(&tile.sums) {
-            film.pixels[y as usize * width as usize + x as usize] = *sums;
+        for (i, ((x, y), sums)) in tile.rect.pixels().zip(&tile.sums).enumerate() {
+            let pixel = y as usize * width as usize + x as usize;
+            film.pixels[pixel] = *sums;
+            if !film.layers.is_empty() {
+                film.layers.copy_pixel(pixel, &tile.layers, i);
+            }
         }
     }
     film

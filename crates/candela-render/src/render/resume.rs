@@ -32,6 +32,7 @@ pub struct Continuation<'a> {
 pub struct PassEnd<'a> {
     pub(super) tiles: &'a [TileState],
     pub(super) size: (u32, u32),
+    pub(super) layer_names: &'a [String],
     /// The statistics so far (of this render, not of the film it continued).
     pub stats: &'a RenderStats,
     /// Wall-clock time since this render started.
@@ -41,7 +42,7 @@ pub struct PassEnd<'a> {
 impl PassEnd<'_> {
     /// The full-frame film of every finished pass (a copy of the sums).
     pub fn film(&self) -> Film {
-        super::assemble(self.tiles, self.size.0, self.size.1)
+        super::assemble(self.tiles, self.size.0, self.size.1, self.layer_names.to_vec())
     }
 }
 
@@ -51,11 +52,20 @@ impl TileState {
     /// the first batch boundary where the rule held, and the rule is checked
     /// on exactly those sums, so `should_stop(count, ...)` is true for it
     /// and false for every pixel still sampling.
-    pub(super) fn from_film(rect: PixelRect, film: &Film, settings: &RenderSettings) -> Self {
-        let mut tile = TileState::new(rect);
+    pub(super) fn from_film(
+        rect: PixelRect,
+        film: &Film,
+        settings: &RenderSettings,
+        layer_names: &[String],
+    ) -> Self {
+        let mut tile = TileState::new(rect, layer_names);
         for (i, (x, y)) in rect.pixels().enumerate() {
             let sums = *film.pixel(x, y);
             tile.sums[i] = sums;
+            if !tile.layers.is_empty() {
+                let pixel = y as usize * film.width as usize + x as usize;
+                tile.layers.copy_pixel(i, &film.layers, pixel);
+            }
             tile.converged[i] = settings
                 .adaptive
                 .is_some_and(|a| a.should_stop(sums.count, sums.lum, sums.lum_sq));

@@ -68,6 +68,14 @@ pub struct IntegratorSettings {
     #[cfg_attr(feature = "cli", arg(long, value_name = "K"))]
     pub bounce: Option<u32>,
 
+    /// Also write the light of each bounce count 0..=K as an EXR layer of
+    /// its own, `bounce_0` ... `bounce_K`: layer k is the `--bounce k` image
+    /// of the same seed, so a whole bounce series comes from one render.
+    /// With K equal to the maximum depth the layers add up to the image. At
+    /// most the maximum depth; path tracing adding every bounce only.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "K"))]
+    pub bounce_layers: Option<u32>,
+
     /// Russian roulette on the path throughput from the third bounce on
     /// (unbiased; `--no-roulette` is `--roulette false`).
     #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", action = clap::ArgAction::Set,
@@ -91,6 +99,7 @@ impl Default for IntegratorSettings {
             light_samples: 1,
             accumulate: true,
             bounce: None,
+            bounce_layers: None,
             roulette: true,
             clamp: None,
         }
@@ -132,11 +141,16 @@ impl IntegratorSettings {
     }
 
     pub(super) fn validate(&self) -> Result<(), SettingsError> {
-        if let Some(k) = self.bounce {
+        let bounce_options = [
+            ("bounce", "--bounce", self.bounce),
+            ("bounce_layers", "--bounce-layers", self.bounce_layers),
+        ];
+        for (key, flag, k) in bounce_options {
+            let Some(k) = k else { continue };
             check(
                 k <= self.max_depth,
-                "bounce",
-                "--bounce",
+                key,
+                flag,
                 k,
                 format_args!("at most the maximum depth (-m {})", self.max_depth),
             )?;
@@ -151,12 +165,21 @@ impl IntegratorSettings {
             if let Some(view) = view {
                 check(
                     false,
-                    "bounce",
-                    "--bounce",
+                    key,
+                    flag,
                     k,
                     format_args!("only with the path integrator adding every bounce, not {view}"),
                 )?;
             }
+        }
+        if let (Some(k), Some(layers)) = (self.bounce, self.bounce_layers) {
+            check(
+                false,
+                "bounce_layers",
+                "--bounce-layers",
+                layers,
+                format_args!("not with --bounce {k}, which keeps one bounce count only"),
+            )?;
         }
         if let Some(c) = self.clamp {
             let ok = c.is_finite() && c > 0.0;

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod agreement;
+pub mod agreement_scenes;
 
 use candela_render::camera::framing::CameraMode;
 use candela_render::integrator::IntegratorSettings;

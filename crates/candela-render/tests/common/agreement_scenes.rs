@@ -1,0 +1,200 @@
+//! The scenes of the estimator-agreement suite, built at its resolution:
+//! the CS184 Cornell boxes (from the shared corpus), the project's Mitsuba
+//! boxes of rough and coated materials, a ball under an environment map,
+//! a thin-lens view, the glass room of `common::glass_room`, and a lamp
+//! with an emission texture seen through a stochastic cut-out screen.
+
+use candela_image::{write_exr, ExrLayers, RgbImage};
+use candela_render::camera::framing::CameraMode;
+use candela_render::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
+use candela_render::scene::{Scene, SceneOptions};
+use candela_scene::{
+    load, BsdfDesc, ColorSpace, InstanceDesc, LoadOptions, MeshDesc, SceneDesc, SourceLoc,
+    SphereDesc, TextureRef,
+};
+use glam::{Mat4, Vec2, Vec3};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// The suite's image size: small, so that the whole table runs in CI, and
+/// whole 8×8 blocks (a partial block would pool fewer samples, and its
+/// mean would be further from normal).
+pub const SIZE: (u32, u32) = (48, 40);
+
+/// Options at the suite's size with this camera placement.
+pub fn options(camera_mode: CameraMode) -> SceneOptions {
+    SceneOptions {
+        width: SIZE.0,
+        height: SIZE.1,
+        camera_mode,
+        ..Default::default()
+    }
+}
+
+fn build(desc: &SceneDesc, opts: &SceneOptions) -> Scene {
+    Scene::build(desc, opts).expect("scene builds")
+}
+
+fn load_file(path: PathBuf) -> SceneDesc {
+    load(&path, &LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .scene
+}
+
+/// A CS184 Cornell box from the shared corpus, framed as the course does.
+pub fn cs184_box(file: &str) -> Scene {
+    build(&load_file(super::cs184(file)), &options(CameraMode::Cs184))
+}
+
+/// A CS184 box seen through a thin lens (CS184 `-b`, `-d`): radius
+/// `lens_radius`, focused `focal_distance` from the eye.
+pub fn cs184_box_thin_lens(file: &str, lens_radius: f32, focal_distance: f32) -> Scene {
+    let opts = SceneOptions {
+        lens_radius,
+        focal_distance: Some(focal_distance),
+        ..options(CameraMode::Cs184)
+    };
+    let scene = build(&load_file(super::cs184(file)), &opts);
+    assert_eq!(scene.camera.lens_radius, lens_radius, "a thin lens");
+    scene
+}
+
+/// One of the project's Mitsuba scenes (`scenes/mitsuba/`) through its
+/// own camera.
+pub fn mitsuba_box(file: &str) -> Scene {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/mitsuba")
+        .join(file);
+    build(&load_file(path), &options(CameraMode::File))
+}
+
+/// A unit ball (orange, diffuse) resting on a 20 × 20 grey plane, seen
+/// from the front and a little above, lit only by a procedural sky whose
+/// sun is wide enough (10°) for uniform hemisphere rays to find it often
+/// enough for normal statistics at a few dozen samples per pixel.
+pub fn ball_under_the_sky() -> Scene {
+    let s = 10.0;
+    let plane = MeshDesc {
+        name: "ground".into(),
+        positions: vec![
+            Vec3::new(-s, 0.0, -s),
+            Vec3::new(s, 0.0, -s),
+            Vec3::new(s, 0.0, s),
+            Vec3::new(-s, 0.0, s),
+        ],
+        triangles: vec![[0, 2, 1], [0, 3, 2]],
+        material: 0,
+        ..Default::default()
+    };
+    let mut camera = super::camera_at(Vec3::ZERO);
+    // From (0, 2, 5), pitched down toward the ball's middle.
+    let pitch = -(1.3f32 / 5.0).atan();
+    camera.world_from_camera =
+        Mat4::from_translation(Vec3::new(0.0, 2.0, 5.0)) * Mat4::from_rotation_x(pitch);
+    let diffuse =
+        |name: &str, albedo: Vec3| super::material(name, BsdfDesc::Diffuse { albedo }, None);
+    let desc = SceneDesc {
+        source: "ball under the sky".into(),
+        cameras: vec![camera],
+        meshes: vec![plane],
+        instances: vec![candela_scene::InstanceDesc::identity(0, Default::default())],
+        spheres: vec![SphereDesc {
+            name: "ball".into(),
+            center: Vec3::new(0.0, 1.0, 0.0),
+            radius: 1.0,
+            material: 1,
+            loc: SourceLoc::default(),
+        }],
+        materials: vec![
+            diffuse("ground", Vec3::splat(0.5)),
+            diffuse("ball", Vec3::new(0.8, 0.4, 0.2)),
+        ],
+        ..Default::default()
+    };
+    let sky = ProceduralSky {
+        sun_radius_deg: 10.0,
+        sun: Vec3::new(12.0, 11.0, 9.0),
+        ..Default::default()
+    };
+    let image = sky.image(128, 64).expect("sky image");
+    let map = EnvironmentMap::from_image(&image, &EnvironmentOptions::default()).expect("map");
+    let opts = SceneOptions {
+        environment: Some(Arc::new(map)),
+        ..options(CameraMode::File)
+    };
+    let scene = build(&desc, &opts);
+    assert_eq!(scene.lights.lights().len(), 1, "the sky is the only light");
+    scene
+}
+
+/// `common::glass_room`: an area lamp, a point light, a dim sky, a glass
+/// ball and a diffuse one in an open room.
+pub fn glass_room() -> Scene {
+    build(&super::glass_room(), &options(CameraMode::File))
+}
+
+/// A quad `corner + s·u + t·v`, uv = (s, t), facing `u × v`.
+fn textured_quad(corner: Vec3, u: Vec3, v: Vec3, material: usize) -> MeshDesc {
+    MeshDesc {
+        name: format!("quad {material}"),
+        positions: vec![corner, corner + u, corner + u + v, corner + v],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        normals: vec![u.cross(v).normalize()],
+        normal_indices: vec![[0; 3]; 2],
+        uvs: vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y],
+        uv_indices: vec![[0, 1, 2], [0, 2, 3]],
+        material,
+        ..Default::default()
+    }
+}
+
+/// Writes a grey EXR texture of `w × h` values, row 0 at the top.
+fn grey_exr(path: &std::path::Path, w: usize, h: usize, values: &[f32]) {
+    let image = RgbImage::from_pixels(w, h, values.iter().map(|&v| [v; 3]).collect())
+        .expect("texture size");
+    write_exr(path, &ExrLayers::beauty(image)).expect("write texture");
+}
+
+/// A diffuse floor facing the camera, lit by a lamp above the view whose
+/// emission is a 4 × 4 texture, through a diffuse screen with a 3 × 2
+/// stochastic-opacity texture (partly in view): light sampling must
+/// evaluate the texture at its sampled points, and shadow rays must pass
+/// the cut-outs exactly as bounce rays do.
+pub fn textured_lamp_through_a_cut_out_screen() -> Scene {
+    let dir = candela_testkit::TempDir::new("agreement-textured-lamp");
+    let glow = dir.join("glow.exr");
+    let glow_values: Vec<f32> = (0..16)
+        .map(|k| 0.2 + 3.0 * ((k * 5) % 16) as f32 / 15.0)
+        .collect();
+    grey_exr(&glow, 4, 4, &glow_values);
+    let holes = dir.join("holes.exr");
+    grey_exr(&holes, 3, 2, &[0.0, 1.0, 0.4, 0.8, 0.1, 1.0]);
+    let diffuse = |name: &str, albedo: f32| {
+        let albedo = Vec3::splat(albedo);
+        super::material(name, BsdfDesc::Diffuse { albedo }, None)
+    };
+    let mut lamp = super::material("lamp", BsdfDesc::Black, Some(Vec3::ONE));
+    lamp.textures.emission = Some(TextureRef::new(&glow, ColorSpace::Linear));
+    let mut screen = diffuse("screen", 0.5);
+    screen.textures.opacity = Some(TextureRef::new(&holes, ColorSpace::Linear));
+    let meshes = vec![
+        textured_quad(Vec3::new(-1.5, -1.5, -2.5), Vec3::X * 3.0, Vec3::Y * 3.0, 0),
+        textured_quad(Vec3::new(-0.8, 1.6, -2.4), Vec3::X * 1.6, Vec3::Z * 1.4, 1),
+        textured_quad(Vec3::new(-1.2, 0.9, -2.4), Vec3::X * 2.4, Vec3::Z * 1.8, 2),
+    ];
+    let desc = SceneDesc {
+        source: "textured lamp".into(),
+        cameras: vec![super::camera_at(Vec3::ZERO)],
+        instances: (0..meshes.len())
+            .map(|i| InstanceDesc::identity(i, Default::default()))
+            .collect(),
+        meshes,
+        materials: vec![diffuse("floor", 0.8), lamp, screen],
+        ..Default::default()
+    };
+    // The textures are read while the scene builds; the folder may go after.
+    let scene = build(&desc, &options(CameraMode::File));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(scene.lights.lights().len(), 2, "two emissive triangles");
+    scene
+}
