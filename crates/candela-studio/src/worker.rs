@@ -32,6 +32,7 @@ use candela_scene::Loaded;
 use serde_json::{Map, Value};
 use std::ops::Range;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::sync::Arc;
 use std::time::Instant;
@@ -42,20 +43,14 @@ pub const COARSE_PIXELS: u32 = 200 * 150;
 /// What the worker is asked to do.
 pub enum Job {
     /// Render with these settings changes.
-    Render {
-        /// Counts up per connection; frames carry it.
+    Render(RenderJob),
+    /// Show another layer of the last film.
+    Layer {
+        /// The page's id of the request, echoed in the frame.
         id: u64,
-        /// Changes to the scene's settings.
-        changes: Map<String, Value>,
         /// The layer to show.
         layer: Layer,
-        /// Set when a newer request or a cancel arrives.
-        cancel: Cancel,
-        /// When the request arrived.
-        received: Instant,
     },
-    /// Show another layer of the last film.
-    Layer(Layer),
     /// Trace samples `0..samples` of pixel (x, y) of the last render.
     Inspect {
         /// The pixel.
@@ -65,6 +60,50 @@ pub enum Job {
     },
     /// Write the last film.
     Save(SaveFormat),
+}
+
+/// A render request, as the worker runs it and as the session keeps it:
+/// to cancel it, to see whether it has finished, and to start it again
+/// showing another layer.
+#[derive(Clone)]
+pub struct RenderJob {
+    /// The page's id of the request; its frames carry it.
+    pub id: u64,
+    /// Changes to the scene's settings.
+    pub changes: Map<String, Value>,
+    /// The layer to show.
+    pub layer: Layer,
+    /// Set when a newer request or a cancel arrives.
+    pub cancel: Cancel,
+    /// Set by the worker once the render has sent its last frame, or has
+    /// stopped (cancelled, or an error).
+    pub finished: Arc<AtomicBool>,
+    /// When the request arrived.
+    pub received: Instant,
+}
+
+impl RenderJob {
+    /// A new request, arrived now.
+    pub fn new(id: u64, changes: Map<String, Value>, layer: Layer) -> Self {
+        RenderJob {
+            id,
+            changes,
+            layer,
+            cancel: Cancel::new(),
+            finished: Arc::new(AtomicBool::new(false)),
+            received: Instant::now(),
+        }
+    }
+
+    /// The same render showing `layer`, as request `id`, arrived now.
+    pub fn again(&self, id: u64, layer: Layer) -> Self {
+        RenderJob::new(id, self.changes.clone(), layer)
+    }
+
+    /// Whether the worker is done with it.
+    pub fn is_finished(&self) -> bool {
+        self.finished.load(Ordering::Acquire)
+    }
 }
 
 /// A message for the page.
@@ -147,23 +186,18 @@ struct Worker {
 impl Worker {
     fn run(&mut self, job: Job) {
         match job {
-            Job::Render {
-                id,
-                changes,
-                layer,
-                cancel,
-                received,
-            } => {
-                if cancel.is_cancelled() {
-                    return;
+            Job::Render(job) => {
+                if !job.cancel.is_cancelled() {
+                    if let Err(message) = self.render(&job) {
+                        self.reply(Reply::error(message));
+                    }
                 }
-                if let Err(message) = self.render(id, &changes, layer, &cancel, received) {
-                    self.reply(Reply::error(message));
-                }
+                job.finished.store(true, Ordering::Release);
             }
-            Job::Layer(layer) => match &mut self.last {
+            Job::Layer { id, layer } => match &mut self.last {
                 Some(last) => {
                     last.header.layer = layer;
+                    last.header.job = id;
                     let msg = encode(&last.film, &last.settings, &last.header);
                     (self.send)(msg);
                 }
@@ -184,14 +218,16 @@ impl Worker {
         (self.send)(Outgoing::Text(reply.to_text()));
     }
 
-    fn render(
-        &mut self,
-        id: u64,
-        changes: &Map<String, Value>,
-        layer: Layer,
-        cancel: &Cancel,
-        received: Instant,
-    ) -> Result<(), String> {
+    fn render(&mut self, job: &RenderJob) -> Result<(), String> {
+        let RenderJob {
+            id,
+            changes,
+            layer,
+            cancel,
+            received,
+            ..
+        } = job;
+        let (id, layer, received) = (*id, *layer, *received);
         let mut changes_all = self.source.base.clone();
         changes_all.extend(changes.iter().map(|(k, v)| (k.clone(), v.clone())));
         let settings = Settings::resolve(&self.source.loaded.hints, &changes_all)
@@ -237,7 +273,19 @@ impl Worker {
             send(encode(&film, &settings, &header));
         }
         (header.coarse, header.width, header.height) = (false, width, height);
-        let mut sums = Film::new(width, height);
+        // The film shown is summed in place, pass by pass: a film at
+        // 800×600 is some 70 MB, and a copy of it per pass costs as much
+        // as a pass of a few samples. A cell is summed over the backdrop
+        // with the cell's own pixels cleared (outside the cell a pass's
+        // film is zero, and adding zero is exact). The previous film stays
+        // the last one until the first pass lands.
+        let mut first = Some(backdrop);
+        if let (Some(film), Some(cell)) = (&mut first, base.cell) {
+            let w = film.width as usize;
+            for (x, y) in cell.pixels() {
+                film.pixels[y as usize * w + x as usize] = Default::default();
+            }
+        }
         let ranges = refinement_ranges(&base);
         let last_range = ranges.len() - 1;
         for (k, range) in ranges.into_iter().enumerate() {
@@ -249,20 +297,29 @@ impl Worker {
             if out.stop == StopReason::Cancelled {
                 return Ok(());
             }
-            sums.merge(&out.film).map_err(|e| e.to_string())?;
-            let film = over_backdrop(&backdrop, &sums, &base);
+            let last = match first.take() {
+                Some(film) => self.last.insert(LastFilm {
+                    film,
+                    settings: settings.clone(),
+                    header: header.clone(),
+                }),
+                None => self.last.as_mut().ok_or("the film of the first pass is gone")?,
+            };
+            last.film.merge(&out.film).map_err(|e| e.to_string())?;
             header.spp = range.end.min(base.spp);
             if base.adaptive.is_some() || base.time_budget.is_some() {
-                header.spp = film.sample_spread(settings.image.region()).max;
+                header.spp = last.film.sample_spread(settings.image.region()).max;
             }
             header.done = k == last_range;
             header.elapsed_ms = received.elapsed().as_secs_f64() * 1e3;
-            send(encode(&film, &settings, &header));
-            self.last = Some(LastFilm {
-                film,
-                settings: settings.clone(),
-                header: header.clone(),
-            });
+            last.header = header.clone();
+            let frame = encode(&last.film, &settings, &header);
+            if header.done {
+                // Before the page can see the last frame and ask for
+                // another layer of this film.
+                job.finished.store(true, Ordering::Release);
+            }
+            send(frame);
         }
         Ok(())
     }
@@ -393,21 +450,6 @@ pub fn refinement_ranges(base: &RenderSettings) -> Vec<Range<u32>> {
         step = step.saturating_mul(2);
     }
     ranges
-}
-
-/// The cell's pixels of `sums` over `backdrop`; the whole of `sums` when
-/// there is no cell.
-fn over_backdrop(backdrop: &Film, sums: &Film, base: &RenderSettings) -> Film {
-    let Some(cell) = base.cell else {
-        return sums.clone();
-    };
-    let mut film = backdrop.clone();
-    let w = film.width as usize;
-    for (x, y) in cell.pixels() {
-        let i = y as usize * w + x as usize;
-        film.pixels[i] = sums.pixels[i];
-    }
-    film
 }
 
 /// The frame message of `layer` of `film`.
