@@ -12,6 +12,7 @@
 
 use crate::bvh_view::BvhView;
 use crate::protocol::{parse_request, Reply, Request};
+use crate::scene_pool::{build_scene, BuildKey, ScenePool};
 use crate::worker::{self, Job, Outgoing, RenderJob, Source};
 use crate::{assets, mesh, settings_form, token};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
@@ -106,6 +107,16 @@ impl Studio {
             "spheres": geometry.spheres.len(),
             "sphere_triangles": mesh::SPHERE_TRIANGLES,
         });
+        let source = Source {
+            loaded,
+            path: opts.scene_path,
+            out_dir: opts.out_dir,
+            base: opts.settings,
+            scenes: ScenePool::default(),
+        };
+        // The first tab renders at once: its scene is built here.
+        let first = build_scene(&source, &settings)?;
+        source.scenes.give(first, BuildKey::of(&settings));
         let start_bvh = settings.run.bvh;
         let first_tree = Arc::new(BvhView::build(&geometry, start_bvh.into()));
         let form =
@@ -113,12 +124,7 @@ impl Studio {
         Ok(Studio {
             shared: Arc::new(Shared {
                 token: opts.token.unwrap_or_else(token::new_token),
-                source: Arc::new(Source {
-                    loaded,
-                    path: opts.scene_path,
-                    out_dir: opts.out_dir,
-                    base: opts.settings,
-                }),
+                source: Arc::new(source),
                 scene_info,
                 mesh: mesh::to_bytes(&triangles),
                 geometry,

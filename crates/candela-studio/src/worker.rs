@@ -20,6 +20,7 @@
 
 use crate::command_line::command_line;
 use crate::protocol::{frame_message, FrameHeader, Layer, Reply, SaveFormat};
+use crate::scene_pool::{scene_for, BuildKey, ScenePool};
 use candela_image::{
     finite_percentile, heat_image, quantize_u8, rate_image, RgbImage, ToneCurve, ToneMap,
 };
@@ -126,6 +127,8 @@ pub struct Source {
     pub out_dir: PathBuf,
     /// Settings given on the command line, under the page's changes.
     pub base: Map<String, Value>,
+    /// Built scenes no worker holds.
+    pub scenes: ScenePool,
 }
 
 /// Starts a worker thread; it runs until the job sender is dropped.
@@ -151,23 +154,6 @@ pub fn spawn(
     Ok(tx)
 }
 
-/// The settings a scene build reads besides the camera: when they change,
-/// the scene is built again.
-#[derive(Clone, Debug, PartialEq)]
-struct BuildKey(Value);
-
-impl BuildKey {
-    fn of(s: &Settings) -> Self {
-        let j = s.to_json();
-        let keys = ["bvh", "env_map", "env_scale", "env_rotate", "threads"];
-        BuildKey(
-            keys.iter()
-                .map(|k| j.get(*k).cloned().unwrap_or_default())
-                .collect(),
-        )
-    }
-}
-
 /// The film shown last, with what it needs to be shown or saved again.
 struct LastFilm {
     film: Film,
@@ -181,6 +167,15 @@ struct Worker {
     scene: Option<(Scene, BuildKey)>,
     last: Option<LastFilm>,
     saved: u32,
+}
+
+impl Drop for Worker {
+    /// The next tab (or this one, reloaded) takes the scene over.
+    fn drop(&mut self) {
+        if let Some((scene, key)) = self.scene.take() {
+            self.source.scenes.give(scene, key);
+        }
+    }
 }
 
 impl Worker {
@@ -303,7 +298,10 @@ impl Worker {
                     settings: settings.clone(),
                     header: header.clone(),
                 }),
-                None => self.last.as_mut().ok_or("the film of the first pass is gone")?,
+                None => self
+                    .last
+                    .as_mut()
+                    .ok_or("the film of the first pass is gone")?,
             };
             last.film.merge(&out.film).map_err(|e| e.to_string())?;
             header.spp = range.end.min(base.spp);
@@ -377,33 +375,6 @@ impl Worker {
             files: written.iter().map(|p| p.display().to_string()).collect(),
         })
     }
-}
-
-/// The scene for `settings` in `slot`: built, or with its camera moved
-/// when the built one reads the same settings.
-fn scene_for<'a>(
-    slot: &'a mut Option<(Scene, BuildKey)>,
-    source: &Source,
-    settings: &Settings,
-) -> Result<&'a mut Scene, String> {
-    let desc = &source.loaded.scene;
-    let key = BuildKey::of(settings);
-    let scene = match slot.take() {
-        Some((mut scene, built)) if built == key => {
-            scene.camera =
-                Scene::camera_for(desc, &settings.camera_options()).map_err(|e| e.to_string())?;
-            scene
-        }
-        _ => {
-            let opts = settings.scene_options().map_err(|e| e.to_string())?;
-            settings
-                .with_threads(|| Scene::build(desc, &opts))
-                .map_err(|e| e.to_string())?
-                .map_err(|e| format!("cannot render {}: {e}", desc.source.display()))?
-        }
-    };
-    *slot = Some((scene, key));
-    Ok(&mut slot.as_mut().expect("the scene was just set").0)
 }
 
 /// One sample per pixel of the scene's camera at about [`COARSE_PIXELS`]
