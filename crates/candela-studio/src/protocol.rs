@@ -12,6 +12,7 @@
 //! of a render cancelled on the way, cannot leave the page waiting for an
 //! id the server does not use (which two separate counters could).
 
+use candela_render::film::CostMeasure;
 use candela_render::integrator::inspect::PathRecord;
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
@@ -90,6 +91,22 @@ pub enum Layer {
     /// Traversal work per sample (BVH nodes visited plus primitive tests)
     /// as a heat map up to its 99th percentile.
     Cost,
+    /// BVH nodes visited per sample alone, as [`Layer::Cost`].
+    CostNodes,
+    /// Primitive intersection tests per sample alone, as [`Layer::Cost`].
+    CostTests,
+}
+
+impl Layer {
+    /// The traversal work a cost layer shows.
+    pub fn cost_measure(self) -> Option<CostMeasure> {
+        match self {
+            Layer::Cost => Some(CostMeasure::Total),
+            Layer::CostNodes => Some(CostMeasure::Nodes),
+            Layer::CostTests => Some(CostMeasure::PrimTests),
+            _ => None,
+        }
+    }
 }
 
 /// File formats of [`Request::Save`].

@@ -24,7 +24,7 @@ use crate::scene_pool::{scene_for, BuildKey, ScenePool};
 use candela_image::{
     finite_percentile, heat_image, quantize_u8, rate_image, RgbImage, ToneCurve, ToneMap,
 };
-use candela_render::film::{write_film, CostMeasure, Film, OutputOptions};
+use candela_render::film::{write_film, Film, OutputOptions};
 use candela_render::integrator::inspect::trace_paths;
 use candela_render::render::{render_with, Cancel, RenderControl, RenderSettings, StopReason};
 use candela_render::scene::Scene;
@@ -458,8 +458,9 @@ pub fn encode(film: &Film, settings: &Settings, header: &FrameHeader) -> Outgoin
                 })
                 .collect()
         }
-        Layer::Cost => {
-            let cost = film.cost(CostMeasure::Total);
+        Layer::Cost | Layer::CostNodes | Layer::CostTests => {
+            let measure = header.layer.cost_measure().unwrap_or_default();
+            let cost = film.cost(measure);
             let most = finite_percentile(cost.values(), 0.99)
                 .unwrap_or(1.0)
                 .max(1.0);

@@ -194,7 +194,7 @@ def frame_of_layer(page, layer):
 
 
 def test_layers_show_the_film_and_the_integrator_views(page, out_dir):
-    for layer in ["albedo", "normal", "samples", "std_error", "depth", "cost"]:
+    for layer in ["albedo", "normal", "samples", "std_error", "depth", "cost", "cost_nodes", "cost_tests"]:
         page.select_option("#layer", layer)
         colours = frame_of_layer(page, layer)
         # Without adaptive sampling every pixel has the same count: one colour.
