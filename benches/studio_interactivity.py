@@ -87,6 +87,12 @@ def server_throughput(pg):
     coarse = next(h for h in headers if h["coarse"])
     last = headers[-1]
     seconds = (last["elapsed_ms"] - coarse["elapsed_ms"]) / 1e3
+    rendering = (last["render_ms"] - coarse["render_ms"]) / 1e3
+    # Where the gap to the CLI would be: the server's own work between
+    # passes (summing the film, encoding and sending frames).
+    own = seconds - rendering
+    timeline = ", ".join(f"{h['spp']}@{h['elapsed_ms'] / 1e3:.1f}s" for h in headers if not h["coarse"])
+    print(f"  frames {timeline}; server's own work {own:.2f} s of {seconds:.1f} s ({100 * own / seconds:.1f}%)")
     return WIDTH * HEIGHT * last["spp"] / seconds, last["command"], last["elapsed_ms"] / 1e3
 
 

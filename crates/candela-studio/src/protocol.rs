@@ -196,6 +196,9 @@ pub struct FrameHeader {
     pub layer: Layer,
     /// Milliseconds since the request arrived.
     pub elapsed_ms: f64,
+    /// Of those, the milliseconds spent rendering (the rest is the
+    /// server's own work: camera set-up, summing passes, encoding frames).
+    pub render_ms: f64,
     /// The `candela` command line that renders the same image.
     pub command: String,
 }
@@ -268,6 +271,7 @@ mod tests {
             render_height: 4,
             layer: Layer::Beauty,
             elapsed_ms: 3.0,
+            render_ms: 2.0,
             command: "candela".into(),
         };
         let msg = frame_message(&header, b"PNG");

@@ -256,11 +256,15 @@ impl Worker {
             render_height: height,
             layer,
             elapsed_ms: 0.0,
+            render_ms: 0.0,
             command,
         };
         let send = &self.send;
         if base.cell.is_none() {
-            let Some(film) = render_coarse(scene, &base, &control)? else {
+            let t = Instant::now();
+            let coarse = render_coarse(scene, &base, &control)?;
+            header.render_ms += t.elapsed().as_secs_f64() * 1e3;
+            let Some(film) = coarse else {
                 return Ok(());
             };
             (header.width, header.height) = (film.width, film.height);
@@ -288,7 +292,9 @@ impl Worker {
                 sample_range: Some(range.clone()),
                 ..base.clone()
             };
+            let t = Instant::now();
             let out = render_with(scene, &pass, &control).map_err(|e| e.to_string())?;
+            header.render_ms += t.elapsed().as_secs_f64() * 1e3;
             if out.stop == StopReason::Cancelled {
                 return Ok(());
             }
