@@ -9,7 +9,8 @@
 //!    (about [`COARSE_PIXELS`] pixels), so the image follows a camera stop
 //!    at once;
 //! 2. refinement passes over sample ranges of doubling length (`0..1`,
-//!    `1..3`, `3..7`, ...) up to the target count, each added to the film (the film stores sums,
+//!    `1..3`, `3..7`, ..., a short remainder joining the last) up to the
+//!    target count, each added to the film (the film stores sums,
 //!    so the result is the film of one render of `0..spp`, up to f64
 //!    rounding), an image sent after each. Adaptive sampling and time
 //!    budgets see all of a render's samples, so with either the refinement
@@ -421,7 +422,13 @@ pub fn refinement_ranges(base: &RenderSettings) -> Vec<Range<u32>> {
     let mut start = all.start;
     let mut step = 1u32;
     while start < all.end {
-        let end = start.saturating_add(step).min(all.end);
+        let mut end = start.saturating_add(step).min(all.end);
+        // A remainder shorter than the next step joins this range: each
+        // range costs a film's worth of set-up, summing and encoding
+        // besides its samples, which a short last range would not repay.
+        if all.end - end < step.saturating_mul(2) {
+            end = all.end;
+        }
         ranges.push(start..end);
         start = end;
         step = step.saturating_mul(2);
@@ -521,7 +528,16 @@ mod tests {
             ..Default::default()
         };
         let r = refinement_ranges(&base);
-        assert_eq!(r, vec![0..1, 1..3, 3..7, 7..13]);
+        assert_eq!(r, vec![0..1, 1..3, 3..13], "6 left after 3..7: joined");
+        let sixteen = RenderSettings {
+            spp: 16,
+            ..Default::default()
+        };
+        assert_eq!(
+            refinement_ranges(&sixteen),
+            vec![0..1, 1..3, 3..7, 7..16],
+            "no range of one sample at the end"
+        );
         let one = RenderSettings {
             spp: 1,
             ..Default::default()
