@@ -2,7 +2,7 @@
 
     CANDELA_BIN=target/release/candela python3 benches/studio_interactivity.py \
         [--scene ../shared/scenes/cs184/CBbunny.dae] [--stops 10] [--spp 32] \
-        [--threads 2] [--rounds 3]
+        [--threads 2] [--rounds 4]
 
 Starts `candela view --no-browser -r 800 600 -s SPP -t THREADS SCENE`, opens
 the page in Debian's chromium (Playwright, the system browser), and measures:
@@ -12,7 +12,7 @@ the page in Debian's chromium (Playwright, the system browser), and measures:
    from the render request to the coarse frame sent (`elapsed_ms` of the
    frame). Each drag starts ~1 s into the previous refinement, so it also
    pays for cancelling a running render.
-2. Steady-state throughput, interleaved A/B over `--rounds`: the server's
+2. Steady-state throughput, interleaved over `--rounds` (A B, B A, ...): the server's
    samples per second of the refinement (pixels x spp over the time from the
    coarse frame sent to the last frame sent, so frame encoding and film
    merging count), then the CLI rendering the same camera and settings
@@ -53,11 +53,14 @@ def load():
     return os.getloadavg()[0]
 
 
-def wait_job(pg, what, timeout=600000):
-    """Waits until the newest drawn frame is of the page's newest request and satisfies `what`."""
+def wait_job(pg, what, timeout=600000, polling=500):
+    """Waits until the newest drawn frame is of the page's newest request and
+    satisfies `what`, checking every `polling` ms: Playwright's default
+    polls on every animation frame, which keeps chromium compositing (in
+    software here) and takes CPU from the render being measured."""
     pg.wait_for_function(
         f"(() => {{ const h = window.studio.lastHeader; return h && h.job === window.studio.job && ({what}); }})()",
-        timeout=timeout)
+        timeout=timeout, polling=polling)
 
 
 def camera_stops(pg, stops):
@@ -71,7 +74,7 @@ def camera_stops(pg, stops):
         pg.mouse.move(x + step, y + 3, steps=5)
         t0 = time.perf_counter()
         pg.mouse.up()
-        wait_job(pg, "h.coarse", timeout=60000)
+        wait_job(pg, "h.coarse", timeout=60000, polling=10)
         page_ms.append((time.perf_counter() - t0) * 1e3)
         server_ms.append(pg.evaluate("window.studio.lastHeader.elapsed_ms"))
         loads.append(load())
@@ -113,7 +116,7 @@ def main():
     ap.add_argument("--stops", type=int, default=10)
     ap.add_argument("--spp", type=int, default=32)
     ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--rounds", type=int, default=4)
     a = ap.parse_args()
     if not os.path.exists(a.scene):
         sys.exit(f"studio_interactivity: no scene at {a.scene}")
@@ -134,15 +137,19 @@ def main():
             page_ms, server_ms, stop_loads = camera_stops(pg, a.stops)
             wait_job(pg, "h.done")
             studio, cli, ab_loads = [], [], []
+            command = pg.evaluate("window.studio.lastHeader.command")
             for r in range(a.rounds):
-                rate, command, wall = server_throughput(pg)
-                studio.append(rate)
-                ab_loads.append(load())
-                print(f"round {r + 1}: studio {rate:,.0f} samples/s ({wall:.1f} s, load {ab_loads[-1]:.1f})", flush=True)
-                rate, seconds = cli_throughput(command, os.path.join(tmp, "cli.png"))
-                cli.append(rate)
-                ab_loads.append(load())
-                print(f"round {r + 1}: CLI    {rate:,.0f} samples/s ({seconds:.1f} s, load {ab_loads[-1]:.1f})", flush=True)
+                # A B, then B A: a load that drifts during a round favours neither.
+                for side in ("studio", "cli") if r % 2 == 0 else ("cli", "studio"):
+                    if side == "studio":
+                        rate, command, wall = server_throughput(pg)
+                        studio.append(rate)
+                    else:
+                        rate, wall = cli_throughput(command, os.path.join(tmp, "cli.png"))
+                        cli.append(rate)
+                    ab_loads.append(load())
+                    print(f"round {r + 1}: {side:6} {rate:,.0f} samples/s ({wall:.1f} s, load {ab_loads[-1]:.1f})",
+                          flush=True)
             b.close()
     finally:
         proc.terminate()
