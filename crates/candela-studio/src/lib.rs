@@ -21,6 +21,7 @@ pub mod bvh_view;
 pub mod command_line;
 pub mod mesh;
 pub mod protocol;
+pub mod scene_pool;
 mod server;
 pub mod settings_form;
 pub mod token;

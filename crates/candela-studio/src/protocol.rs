@@ -4,7 +4,15 @@
 //! text ([`Reply`]) and, for images, binary messages made by
 //! [`frame_message`]: a little-endian `u32` header length, the header
 //! ([`FrameHeader`] as JSON), then a PNG.
+//!
+//! Job ids belong to the page: every request that produces frames
+//! ([`Request::Render`], [`Request::Layer`]) carries the page's `job`, and
+//! every frame echoes the id of the request it answers. The page shows only
+//! frames of its newest job, so a request the server never saw, or frames
+//! of a render cancelled on the way, cannot leave the page waiting for an
+//! id the server does not use (which two separate counters could).
 
+use candela_render::film::CostMeasure;
 use candela_render::integrator::inspect::PathRecord;
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
@@ -18,6 +26,9 @@ pub enum Request {
     /// then refinement to the target sample count. Cancels any render in
     /// progress.
     Render {
+        /// The page's id of this request, echoed in its frames.
+        #[serde(default)]
+        job: u64,
         /// Changes to the scene's default settings.
         #[serde(default)]
         settings: Map<String, Value>,
@@ -27,8 +38,13 @@ pub enum Request {
     },
     /// Stop the render in progress (the camera is moving).
     Cancel,
-    /// Show another layer of the last film (no new samples).
+    /// Show another layer: of the last film if its render is finished (no
+    /// new samples), else the running render is cancelled and started
+    /// again showing this layer.
     Layer {
+        /// The page's id of this request, echoed in its frames.
+        #[serde(default)]
+        job: u64,
         /// The layer to show.
         layer: Layer,
     },
@@ -75,6 +91,22 @@ pub enum Layer {
     /// Traversal work per sample (BVH nodes visited plus primitive tests)
     /// as a heat map up to its 99th percentile.
     Cost,
+    /// BVH nodes visited per sample alone, as [`Layer::Cost`].
+    CostNodes,
+    /// Primitive intersection tests per sample alone, as [`Layer::Cost`].
+    CostTests,
+}
+
+impl Layer {
+    /// The traversal work a cost layer shows.
+    pub fn cost_measure(self) -> Option<CostMeasure> {
+        match self {
+            Layer::Cost => Some(CostMeasure::Total),
+            Layer::CostNodes => Some(CostMeasure::Nodes),
+            Layer::CostTests => Some(CostMeasure::PrimTests),
+            _ => None,
+        }
+    }
 }
 
 /// File formats of [`Request::Save`].
@@ -141,7 +173,7 @@ impl Reply {
 /// What a binary image message carries besides the PNG.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FrameHeader {
-    /// The render request this frame answers (counts up per connection).
+    /// The page's id of the request this frame answers.
     pub job: u64,
     /// The coarse preview (lower resolution, one sample per pixel).
     pub coarse: bool,
@@ -164,6 +196,9 @@ pub struct FrameHeader {
     pub layer: Layer,
     /// Milliseconds since the request arrived.
     pub elapsed_ms: f64,
+    /// Of those, the milliseconds spent rendering (the rest is the
+    /// server's own work: camera set-up, summing passes, encoding frames).
+    pub render_ms: f64,
     /// The `candela` command line that renders the same image.
     pub command: String,
 }
@@ -191,17 +226,30 @@ mod tests {
     fn requests_parse_and_bad_ones_are_errors() {
         let r = parse_request(r#"{"type":"render","settings":{"spp":4},"layer":"albedo"}"#);
         match r {
-            Ok(Request::Render { settings, layer }) => {
+            Ok(Request::Render {
+                job,
+                settings,
+                layer,
+            }) => {
+                assert_eq!(job, 0, "no job id: 0");
                 assert_eq!(settings["spp"], 4);
                 assert_eq!(layer, Layer::Albedo);
             }
             other => panic!("{other:?}"),
         }
         assert_eq!(parse_request(r#"{"type":"cancel"}"#), Ok(Request::Cancel));
+        assert_eq!(
+            parse_request(r#"{"type":"layer","layer":"depth","job":7}"#),
+            Ok(Request::Layer {
+                job: 7,
+                layer: Layer::Depth
+            })
+        );
         for bad in [
             "{",
             "[]",
             r#"{"type":"fly"}"#,
+            r#"{"type":"render","job":-1}"#,
             r#"{"type":"save","format":"gif"}"#,
         ] {
             let err = parse_request(bad).unwrap_err();
@@ -223,6 +271,7 @@ mod tests {
             render_height: 4,
             layer: Layer::Beauty,
             elapsed_ms: 3.0,
+            render_ms: 2.0,
             command: "candela".into(),
         };
         let msg = frame_message(&header, b"PNG");

@@ -6,12 +6,14 @@
 //! - `/api/scene` the starting camera, image size and primitive counts;
 //! - `/api/mesh` the triangles (see [`crate::mesh`]);
 //! - `/api/settings` the settings form ([`crate::settings_form`]);
-//! - `/api/bvh?node=N` one BVH node ([`crate::bvh_view`]);
+//! - `/api/bvh?node=N&bvh=KIND` one node of the BVH the `bvh` setting
+//!   builds (the starting setting if `bvh` is not given; [`crate::bvh_view`]);
 //! - `/ws` the WebSocket of render requests and frames ([`crate::protocol`]).
 
 use crate::bvh_view::BvhView;
 use crate::protocol::{parse_request, Reply, Request};
-use crate::worker::{self, Job, Outgoing, Source};
+use crate::scene_pool::{build_scene, BuildKey, ScenePool};
+use crate::worker::{self, Job, Outgoing, RenderJob, Source};
 use crate::{assets, mesh, settings_form, token};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::{Path, Query, Request as HttpRequest, State};
@@ -21,17 +23,15 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::{Json, Router};
 use candela_render::camera::{Camera, CameraView};
-use candela_render::render::Cancel;
 use candela_render::scene::{Geometry, Scene};
-use candela_render::settings::Settings;
+use candela_render::settings::{Bvh, Settings};
 use candela_scene::Loaded;
 use glam::Vec3;
 use serde::Deserialize;
 use serde_json::{json, Map, Value};
 use std::net::SocketAddr;
 use std::path::PathBuf;
-use std::sync::Arc;
-use std::time::Instant;
+use std::sync::{Arc, Mutex};
 use tokio::sync::mpsc;
 
 /// How to start the studio.
@@ -59,8 +59,25 @@ struct Shared {
     source: Arc<Source>,
     scene_info: Value,
     mesh: Vec<u8>,
-    bvh: BvhView,
+    geometry: Geometry,
+    /// The `bvh` setting the studio started with.
+    start_bvh: Bvh,
+    /// The trees shown so far, by `bvh` setting (built when first asked).
+    trees: Mutex<Vec<(Bvh, Arc<BvhView>)>>,
     form: Value,
+}
+
+impl Shared {
+    /// The tree the `kind` setting builds, built on first use.
+    fn tree(&self, kind: Bvh) -> Arc<BvhView> {
+        let mut trees = self.trees.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, tree)) = trees.iter().find(|(k, _)| *k == kind) {
+            return tree.clone();
+        }
+        let tree = Arc::new(BvhView::build(&self.geometry, kind.into()));
+        trees.push((kind, tree.clone()));
+        tree
+    }
 }
 
 impl Studio {
@@ -90,21 +107,29 @@ impl Studio {
             "spheres": geometry.spheres.len(),
             "sphere_triangles": mesh::SPHERE_TRIANGLES,
         });
-        let bvh = BvhView::build(&geometry, settings.run.bvh.into());
+        let source = Source {
+            loaded,
+            path: opts.scene_path,
+            out_dir: opts.out_dir,
+            base: opts.settings,
+            scenes: ScenePool::default(),
+        };
+        // The first tab renders at once: its scene is built here.
+        let first = build_scene(&source, &settings)?;
+        source.scenes.give(first, BuildKey::of(&settings));
+        let start_bvh = settings.run.bvh;
+        let first_tree = Arc::new(BvhView::build(&geometry, start_bvh.into()));
         let form =
             serde_json::to_value(settings_form::describe(&settings)).map_err(|e| e.to_string())?;
         Ok(Studio {
             shared: Arc::new(Shared {
                 token: opts.token.unwrap_or_else(token::new_token),
-                source: Arc::new(Source {
-                    loaded,
-                    path: opts.scene_path,
-                    out_dir: opts.out_dir,
-                    base: opts.settings,
-                }),
+                source: Arc::new(source),
                 scene_info,
                 mesh: mesh::to_bytes(&triangles),
-                bvh,
+                geometry,
+                start_bvh,
+                trees: Mutex::new(vec![(start_bvh, first_tree)]),
                 form,
             }),
         })
@@ -212,20 +237,32 @@ async fn settings(State(s): State<Shared_>) -> Json<Value> {
 #[derive(Deserialize)]
 struct NodeQuery {
     node: Option<String>,
+    bvh: Option<String>,
 }
 
 async fn bvh_node(State(s): State<Shared_>, Query(q): Query<NodeQuery>) -> Response {
+    let bad = |msg: String| (StatusCode::BAD_REQUEST, Json(Reply::error(msg))).into_response();
     let text = q.node.unwrap_or_else(|| "0".into());
     let Ok(index) = text.parse::<u32>() else {
-        let msg = format!("node {text}: expected a node index");
-        return (StatusCode::BAD_REQUEST, Json(Reply::error(msg))).into_response();
+        return bad(format!("node {text}: expected a node index"));
     };
-    match s.bvh.node(index) {
+    let kind = match q.bvh.as_deref() {
+        None | Some("") => s.start_bvh,
+        Some(name) => match serde_json::from_value::<Bvh>(Value::String(name.into())) {
+            Ok(kind) => kind,
+            Err(_) => return bad(format!("bvh {name}: expected sah, median or none")),
+        },
+    };
+    // A first build of another tree takes a while on a big mesh: off the
+    // async threads.
+    let shared = s.clone();
+    let Ok(tree) = tokio::task::spawn_blocking(move || shared.tree(kind)).await else {
+        let msg = "the BVH build failed".to_string();
+        return (StatusCode::INTERNAL_SERVER_ERROR, Json(Reply::error(msg))).into_response();
+    };
+    match tree.node(index) {
         Some(view) => Json(view).into_response(),
-        None => {
-            let msg = format!("node {index}: the BVH has {} nodes", s.bvh.len());
-            (StatusCode::BAD_REQUEST, Json(Reply::error(msg))).into_response()
-        }
+        None => bad(format!("node {index}: the BVH has {} nodes", tree.len())),
     }
 }
 
@@ -246,8 +283,9 @@ async fn session(mut socket: WebSocket, s: Shared_) {
             return;
         }
     };
-    let mut current = Cancel::new();
-    let mut next_id = 0u64;
+    // The last render request: cancelled by newer ones, started again by
+    // a layer change while it runs.
+    let mut running: Option<RenderJob> = None;
     loop {
         tokio::select! {
             incoming = socket.recv() => {
@@ -262,14 +300,22 @@ async fn session(mut socket: WebSocket, s: Shared_) {
                     Some(Err(_)) | None => break,
                 };
                 let job = match parse_request(&text) {
-                    Ok(Request::Render { settings, layer }) => {
-                        current.cancel();
-                        current = Cancel::new();
-                        next_id += 1;
-                        Job::Render { id: next_id, changes: settings, layer, cancel: current.clone(), received: Instant::now() }
+                    Ok(Request::Render { job, settings, layer }) => {
+                        start(&mut running, RenderJob::new(job, settings, layer))
                     }
-                    Ok(Request::Cancel) => { current.cancel(); continue; }
-                    Ok(Request::Layer { layer }) => Job::Layer(layer),
+                    Ok(Request::Cancel) => {
+                        if let Some(r) = &running { r.cancel.cancel(); }
+                        continue;
+                    }
+                    Ok(Request::Layer { job, layer }) => match &running {
+                        // The worker is busy with this render: waiting for
+                        // it would delay the layer by the whole render.
+                        Some(r) if !r.is_finished() && !r.cancel.is_cancelled() => {
+                            let again = r.again(job, layer);
+                            start(&mut running, again)
+                        }
+                        _ => Job::Layer { id: job, layer },
+                    },
                     Ok(Request::Save { format }) => Job::Save(format),
                     Ok(Request::Inspect { x, y, samples }) => Job::Inspect { pixel: (x, y), samples },
                     Err(message) => {
@@ -290,7 +336,18 @@ async fn session(mut socket: WebSocket, s: Shared_) {
         }
     }
     // Dropping the job sender ends the worker after its current job.
-    current.cancel();
+    if let Some(r) = &running {
+        r.cancel.cancel();
+    }
+}
+
+/// Cancels the render in `running` and makes `job` the running one.
+fn start(running: &mut Option<RenderJob>, job: RenderJob) -> Job {
+    if let Some(r) = running.as_ref() {
+        r.cancel.cancel();
+    }
+    *running = Some(job.clone());
+    Job::Render(job)
 }
 
 /// Binds `addr`, tells `ready` the address bound (the port, if 0 was

@@ -9,7 +9,8 @@
 //!    (about [`COARSE_PIXELS`] pixels), so the image follows a camera stop
 //!    at once;
 //! 2. refinement passes over sample ranges of doubling length (`0..1`,
-//!    `1..3`, `3..7`, ...) up to the target count, each added to the film (the film stores sums,
+//!    `1..3`, `3..7`, ..., a short remainder joining the last) up to the
+//!    target count, each added to the film (the film stores sums,
 //!    so the result is the film of one render of `0..spp`, up to f64
 //!    rounding), an image sent after each. Adaptive sampling and time
 //!    budgets see all of a render's samples, so with either the refinement
@@ -20,10 +21,11 @@
 
 use crate::command_line::command_line;
 use crate::protocol::{frame_message, FrameHeader, Layer, Reply, SaveFormat};
+use crate::scene_pool::{scene_for, BuildKey, ScenePool};
 use candela_image::{
     finite_percentile, heat_image, quantize_u8, rate_image, RgbImage, ToneCurve, ToneMap,
 };
-use candela_render::film::{write_film, CostMeasure, Film, OutputOptions};
+use candela_render::film::{write_film, Film, OutputOptions};
 use candela_render::integrator::inspect::trace_paths;
 use candela_render::render::{render_with, Cancel, RenderControl, RenderSettings, StopReason};
 use candela_render::scene::Scene;
@@ -32,6 +34,7 @@ use candela_scene::Loaded;
 use serde_json::{Map, Value};
 use std::ops::Range;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::sync::Arc;
 use std::time::Instant;
@@ -42,20 +45,14 @@ pub const COARSE_PIXELS: u32 = 200 * 150;
 /// What the worker is asked to do.
 pub enum Job {
     /// Render with these settings changes.
-    Render {
-        /// Counts up per connection; frames carry it.
+    Render(RenderJob),
+    /// Show another layer of the last film.
+    Layer {
+        /// The page's id of the request, echoed in the frame.
         id: u64,
-        /// Changes to the scene's settings.
-        changes: Map<String, Value>,
         /// The layer to show.
         layer: Layer,
-        /// Set when a newer request or a cancel arrives.
-        cancel: Cancel,
-        /// When the request arrived.
-        received: Instant,
     },
-    /// Show another layer of the last film.
-    Layer(Layer),
     /// Trace samples `0..samples` of pixel (x, y) of the last render.
     Inspect {
         /// The pixel.
@@ -65,6 +62,50 @@ pub enum Job {
     },
     /// Write the last film.
     Save(SaveFormat),
+}
+
+/// A render request, as the worker runs it and as the session keeps it:
+/// to cancel it, to see whether it has finished, and to start it again
+/// showing another layer.
+#[derive(Clone)]
+pub struct RenderJob {
+    /// The page's id of the request; its frames carry it.
+    pub id: u64,
+    /// Changes to the scene's settings.
+    pub changes: Map<String, Value>,
+    /// The layer to show.
+    pub layer: Layer,
+    /// Set when a newer request or a cancel arrives.
+    pub cancel: Cancel,
+    /// Set by the worker once the render has sent its last frame, or has
+    /// stopped (cancelled, or an error).
+    pub finished: Arc<AtomicBool>,
+    /// When the request arrived.
+    pub received: Instant,
+}
+
+impl RenderJob {
+    /// A new request, arrived now.
+    pub fn new(id: u64, changes: Map<String, Value>, layer: Layer) -> Self {
+        RenderJob {
+            id,
+            changes,
+            layer,
+            cancel: Cancel::new(),
+            finished: Arc::new(AtomicBool::new(false)),
+            received: Instant::now(),
+        }
+    }
+
+    /// The same render showing `layer`, as request `id`, arrived now.
+    pub fn again(&self, id: u64, layer: Layer) -> Self {
+        RenderJob::new(id, self.changes.clone(), layer)
+    }
+
+    /// Whether the worker is done with it.
+    pub fn is_finished(&self) -> bool {
+        self.finished.load(Ordering::Acquire)
+    }
 }
 
 /// A message for the page.
@@ -87,6 +128,8 @@ pub struct Source {
     pub out_dir: PathBuf,
     /// Settings given on the command line, under the page's changes.
     pub base: Map<String, Value>,
+    /// Built scenes no worker holds.
+    pub scenes: ScenePool,
 }
 
 /// Starts a worker thread; it runs until the job sender is dropped.
@@ -112,23 +155,6 @@ pub fn spawn(
     Ok(tx)
 }
 
-/// The settings a scene build reads besides the camera: when they change,
-/// the scene is built again.
-#[derive(Clone, Debug, PartialEq)]
-struct BuildKey(Value);
-
-impl BuildKey {
-    fn of(s: &Settings) -> Self {
-        let j = s.to_json();
-        let keys = ["bvh", "env_map", "env_scale", "env_rotate", "threads"];
-        BuildKey(
-            keys.iter()
-                .map(|k| j.get(*k).cloned().unwrap_or_default())
-                .collect(),
-        )
-    }
-}
-
 /// The film shown last, with what it needs to be shown or saved again.
 struct LastFilm {
     film: Film,
@@ -144,26 +170,30 @@ struct Worker {
     saved: u32,
 }
 
+impl Drop for Worker {
+    /// The next tab (or this one, reloaded) takes the scene over.
+    fn drop(&mut self) {
+        if let Some((scene, key)) = self.scene.take() {
+            self.source.scenes.give(scene, key);
+        }
+    }
+}
+
 impl Worker {
     fn run(&mut self, job: Job) {
         match job {
-            Job::Render {
-                id,
-                changes,
-                layer,
-                cancel,
-                received,
-            } => {
-                if cancel.is_cancelled() {
-                    return;
+            Job::Render(job) => {
+                if !job.cancel.is_cancelled() {
+                    if let Err(message) = self.render(&job) {
+                        self.reply(Reply::error(message));
+                    }
                 }
-                if let Err(message) = self.render(id, &changes, layer, &cancel, received) {
-                    self.reply(Reply::error(message));
-                }
+                job.finished.store(true, Ordering::Release);
             }
-            Job::Layer(layer) => match &mut self.last {
+            Job::Layer { id, layer } => match &mut self.last {
                 Some(last) => {
                     last.header.layer = layer;
+                    last.header.job = id;
                     let msg = encode(&last.film, &last.settings, &last.header);
                     (self.send)(msg);
                 }
@@ -184,14 +214,16 @@ impl Worker {
         (self.send)(Outgoing::Text(reply.to_text()));
     }
 
-    fn render(
-        &mut self,
-        id: u64,
-        changes: &Map<String, Value>,
-        layer: Layer,
-        cancel: &Cancel,
-        received: Instant,
-    ) -> Result<(), String> {
+    fn render(&mut self, job: &RenderJob) -> Result<(), String> {
+        let RenderJob {
+            id,
+            changes,
+            layer,
+            cancel,
+            received,
+            ..
+        } = job;
+        let (id, layer, received) = (*id, *layer, *received);
         let mut changes_all = self.source.base.clone();
         changes_all.extend(changes.iter().map(|(k, v)| (k.clone(), v.clone())));
         let settings = Settings::resolve(&self.source.loaded.hints, &changes_all)
@@ -225,11 +257,15 @@ impl Worker {
             render_height: height,
             layer,
             elapsed_ms: 0.0,
+            render_ms: 0.0,
             command,
         };
         let send = &self.send;
         if base.cell.is_none() {
-            let Some(film) = render_coarse(scene, &base, &control)? else {
+            let t = Instant::now();
+            let coarse = render_coarse(scene, &base, &control)?;
+            header.render_ms += t.elapsed().as_secs_f64() * 1e3;
+            let Some(film) = coarse else {
                 return Ok(());
             };
             (header.width, header.height) = (film.width, film.height);
@@ -237,7 +273,19 @@ impl Worker {
             send(encode(&film, &settings, &header));
         }
         (header.coarse, header.width, header.height) = (false, width, height);
-        let mut sums = Film::new(width, height);
+        // The film shown is summed in place, pass by pass: a film at
+        // 800×600 is some 70 MB, and a copy of it per pass costs as much
+        // as a pass of a few samples. A cell is summed over the backdrop
+        // with the cell's own pixels cleared (outside the cell a pass's
+        // film is zero, and adding zero is exact). The previous film stays
+        // the last one until the first pass lands.
+        let mut first = Some(backdrop);
+        if let (Some(film), Some(cell)) = (&mut first, base.cell) {
+            let w = film.width as usize;
+            for (x, y) in cell.pixels() {
+                film.pixels[y as usize * w + x as usize] = Default::default();
+            }
+        }
         let ranges = refinement_ranges(&base);
         let last_range = ranges.len() - 1;
         for (k, range) in ranges.into_iter().enumerate() {
@@ -245,24 +293,38 @@ impl Worker {
                 sample_range: Some(range.clone()),
                 ..base.clone()
             };
+            let t = Instant::now();
             let out = render_with(scene, &pass, &control).map_err(|e| e.to_string())?;
+            header.render_ms += t.elapsed().as_secs_f64() * 1e3;
             if out.stop == StopReason::Cancelled {
                 return Ok(());
             }
-            sums.merge(&out.film).map_err(|e| e.to_string())?;
-            let film = over_backdrop(&backdrop, &sums, &base);
+            let last = match first.take() {
+                Some(film) => self.last.insert(LastFilm {
+                    film,
+                    settings: settings.clone(),
+                    header: header.clone(),
+                }),
+                None => self
+                    .last
+                    .as_mut()
+                    .ok_or("the film of the first pass is gone")?,
+            };
+            last.film.merge(&out.film).map_err(|e| e.to_string())?;
             header.spp = range.end.min(base.spp);
             if base.adaptive.is_some() || base.time_budget.is_some() {
-                header.spp = film.sample_spread(settings.image.region()).max;
+                header.spp = last.film.sample_spread(settings.image.region()).max;
             }
             header.done = k == last_range;
             header.elapsed_ms = received.elapsed().as_secs_f64() * 1e3;
-            send(encode(&film, &settings, &header));
-            self.last = Some(LastFilm {
-                film,
-                settings: settings.clone(),
-                header: header.clone(),
-            });
+            last.header = header.clone();
+            let frame = encode(&last.film, &settings, &header);
+            if header.done {
+                // Before the page can see the last frame and ask for
+                // another layer of this film.
+                job.finished.store(true, Ordering::Release);
+            }
+            send(frame);
         }
         Ok(())
     }
@@ -324,33 +386,6 @@ impl Worker {
     }
 }
 
-/// The scene for `settings` in `slot`: built, or with its camera moved
-/// when the built one reads the same settings.
-fn scene_for<'a>(
-    slot: &'a mut Option<(Scene, BuildKey)>,
-    source: &Source,
-    settings: &Settings,
-) -> Result<&'a mut Scene, String> {
-    let desc = &source.loaded.scene;
-    let key = BuildKey::of(settings);
-    let scene = match slot.take() {
-        Some((mut scene, built)) if built == key => {
-            scene.camera =
-                Scene::camera_for(desc, &settings.camera_options()).map_err(|e| e.to_string())?;
-            scene
-        }
-        _ => {
-            let opts = settings.scene_options().map_err(|e| e.to_string())?;
-            settings
-                .with_threads(|| Scene::build(desc, &opts))
-                .map_err(|e| e.to_string())?
-                .map_err(|e| format!("cannot render {}: {e}", desc.source.display()))?
-        }
-    };
-    *slot = Some((scene, key));
-    Ok(&mut slot.as_mut().expect("the scene was just set").0)
-}
-
 /// One sample per pixel of the scene's camera at about [`COARSE_PIXELS`]
 /// pixels; `None` if cancelled.
 fn render_coarse(
@@ -389,27 +424,18 @@ pub fn refinement_ranges(base: &RenderSettings) -> Vec<Range<u32>> {
     let mut start = all.start;
     let mut step = 1u32;
     while start < all.end {
-        let end = start.saturating_add(step).min(all.end);
+        let mut end = start.saturating_add(step).min(all.end);
+        // A remainder shorter than the next step joins this range: each
+        // range costs a film's worth of set-up, summing and encoding
+        // besides its samples, which a short last range would not repay.
+        if all.end - end < step.saturating_mul(2) {
+            end = all.end;
+        }
         ranges.push(start..end);
         start = end;
         step = step.saturating_mul(2);
     }
     ranges
-}
-
-/// The cell's pixels of `sums` over `backdrop`; the whole of `sums` when
-/// there is no cell.
-fn over_backdrop(backdrop: &Film, sums: &Film, base: &RenderSettings) -> Film {
-    let Some(cell) = base.cell else {
-        return sums.clone();
-    };
-    let mut film = backdrop.clone();
-    let w = film.width as usize;
-    for (x, y) in cell.pixels() {
-        let i = y as usize * w + x as usize;
-        film.pixels[i] = sums.pixels[i];
-    }
-    film
 }
 
 /// The frame message of `layer` of `film`.
@@ -447,8 +473,9 @@ pub fn encode(film: &Film, settings: &Settings, header: &FrameHeader) -> Outgoin
                 })
                 .collect()
         }
-        Layer::Cost => {
-            let cost = film.cost(CostMeasure::Total);
+        Layer::Cost | Layer::CostNodes | Layer::CostTests => {
+            let measure = header.layer.cost_measure().unwrap_or_default();
+            let cost = film.cost(measure);
             let most = finite_percentile(cost.values(), 0.99)
                 .unwrap_or(1.0)
                 .max(1.0);
@@ -503,7 +530,16 @@ mod tests {
             ..Default::default()
         };
         let r = refinement_ranges(&base);
-        assert_eq!(r, vec![0..1, 1..3, 3..7, 7..13]);
+        assert_eq!(r, vec![0..1, 1..3, 3..13], "6 left after 3..7: joined");
+        let sixteen = RenderSettings {
+            spp: 16,
+            ..Default::default()
+        };
+        assert_eq!(
+            refinement_ranges(&sixteen),
+            vec![0..1, 1..3, 3..7, 7..16],
+            "no range of one sample at the end"
+        );
         let one = RenderSettings {
             spp: 1,
             ..Default::default()

@@ -202,3 +202,117 @@ async fn bad_requests_get_error_replies_and_the_session_goes_on() {
     }
     assert_eq!(spp_seen, vec![1, 1, 3], "coarse, then 0..1, then 1..3");
 }
+
+/// The header of a frame message; `None` for text.
+fn frame_header(message: &Message) -> Option<Value> {
+    let Message::Binary(bytes) = message else {
+        return None;
+    };
+    let n = u32::from_le_bytes(bytes[..4].try_into().unwrap()) as usize;
+    Some(serde_json::from_slice(&bytes[4..4 + n]).unwrap())
+}
+
+/// The next frame of request `job`, skipping frames of older requests.
+async fn frame_of(ws: &mut Socket, job: u64) -> Value {
+    loop {
+        let message = next(ws).await;
+        let header = frame_header(&message).unwrap_or_else(|| panic!("{message:?}"));
+        let id = header["job"].as_u64().unwrap();
+        assert!(id <= job, "frame of job {id} before job {job} was answered");
+        if id == job {
+            return header;
+        }
+    }
+}
+
+#[tokio::test]
+async fn frames_echo_the_page_job_and_a_layer_change_restarts_a_running_render() {
+    let addr = start().await;
+    let mut ws = connect(addr).await;
+    // A render far longer than the test's patience (a million samples per
+    // pixel): anything that waited for it to finish would time out.
+    let endless = json!({"type": "render", "job": 41,
+        "settings": {"width": 48, "height": 36, "spp": 1_000_000}});
+    ws.send(Message::Text(endless.to_string().into()))
+        .await
+        .unwrap();
+    let coarse = frame_of(&mut ws, 41).await;
+    assert_eq!(
+        (coarse["coarse"].clone(), coarse["layer"].clone()),
+        (json!(true), json!("beauty"))
+    );
+    // Another layer while it runs: the render starts again showing it.
+    let layer = json!({"type": "layer", "job": 42, "layer": "depth"});
+    ws.send(Message::Text(layer.to_string().into()))
+        .await
+        .unwrap();
+    let again = frame_of(&mut ws, 42).await;
+    assert_eq!(again["layer"], "depth");
+    assert_eq!(
+        again["coarse"], true,
+        "a new render: its coarse frame first"
+    );
+    // New settings cancel it too (the session does not wait for the render).
+    let small = json!({"type": "render", "job": 50,
+        "settings": {"width": 48, "height": 36, "spp": 2}, "layer": "normal"});
+    ws.send(Message::Text(small.to_string().into()))
+        .await
+        .unwrap();
+    let mut header = frame_of(&mut ws, 50).await;
+    while header["done"] != true {
+        header = frame_of(&mut ws, 50).await;
+    }
+    assert_eq!(
+        (header["spp"].clone(), header["layer"].clone()),
+        (json!(2), json!("normal"))
+    );
+    // Once a render is finished, another layer is the same film again.
+    let layer = json!({"type": "layer", "job": 51, "layer": "albedo"});
+    ws.send(Message::Text(layer.to_string().into()))
+        .await
+        .unwrap();
+    let shown = frame_of(&mut ws, 51).await;
+    assert_eq!(
+        (
+            shown["coarse"].clone(),
+            shown["done"].clone(),
+            shown["spp"].clone(),
+            shown["layer"].clone()
+        ),
+        (json!(false), json!(true), json!(2), json!("albedo"))
+    );
+}
+
+#[tokio::test]
+async fn the_bvh_view_follows_the_bvh_setting() {
+    let addr = start().await;
+    let root = |kind: &'static str| async move {
+        let query = if kind.is_empty() {
+            String::new()
+        } else {
+            format!("&bvh={kind}")
+        };
+        let (status, body) = get(addr, &format!("/api/bvh?node=0{query}&token={TOKEN}")).await;
+        (status, serde_json::from_str::<Value>(&body).unwrap())
+    };
+    let (_, start_tree) = root("").await;
+    let (_, sah) = root("sah").await;
+    assert_eq!(start_tree, sah, "the demo starts with the SAH tree");
+    let (status, median) = root("median").await;
+    assert_eq!(status, 200);
+    assert_eq!(median["node"]["primitives"], sah["node"]["primitives"]);
+    assert_ne!(median, sah, "the median split makes another tree");
+    let (status, none) = root("none").await;
+    assert_eq!(status, 200);
+    assert_eq!(
+        none["children"].as_array().unwrap().len(),
+        0,
+        "no hierarchy: one leaf"
+    );
+    let (status, bad) = root("octree").await;
+    assert_eq!(status, 400);
+    assert!(
+        bad["message"].as_str().unwrap().contains("bvh octree"),
+        "{bad}"
+    );
+}

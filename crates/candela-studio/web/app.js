@@ -19,6 +19,8 @@ async function main() {
   const radius = sceneRadius(positions);
   const up = Math.abs(scene.view.up[1]) > 0.1 ? [0, 1, 0] : scene.view.up;
   // layerSettings: the settings a layer needs (direct/indirect only, bounce k).
+  // job: the id of the newest request that produces frames; the server
+  // echoes it in each frame, and frames of older ids are dropped.
   let mode = "render", layer = "beauty", layerSettings = {}, cell = null, job = 0;
   const redraw = () => View3D.draw(Orbit.camera(), radius, { dim: mode === "bvh" });
   const showImage = (on) => {
@@ -29,18 +31,25 @@ async function main() {
   const render = () => {
     const settings = { ...Panel.changes, ...Orbit.settings(), ...layerSettings };
     if (cell) settings.cell = cell;
-    job += 1;
-    studio.job = job;
-    Net.send({ type: "render", settings, layer });
+    studio.job = ++job;
+    Net.send({ type: "render", job, settings, layer });
   };
   studio.render = render;
   Orbit.init($("overlay"), { ...scene.view, up }, {
-    moveStart: () => { Net.send({ type: "cancel" }); cell = null; clearOverlay(); showImage(false); },
+    moveStart: () => {
+      studio.job = ++job; // frames of the cancelled render are dropped
+      Net.send({ type: "cancel" });
+      cell = null; clearOverlay(); showImage(false);
+    },
     moved: redraw,
     stopped: render,
   });
   studio.camera = () => Orbit.settings();
-  Panel.build($("settings"), form.fields, render);
+  Panel.build($("settings"), form.fields, () => {
+    render();
+    // Another `bvh` setting: show the root of its tree.
+    if (mode === "bvh" && (Panel.changes.bvh ?? undefined) !== Bvh.kind) goNode(0);
+  });
 
   const onText = (msg) => {
     if (msg.type === "error") {
@@ -59,15 +68,24 @@ async function main() {
       $("message").textContent = "wrote " + msg.files.join(", ");
     }
   };
-  const onFrame = async (header, blob) => {
-    if (header.job !== job) return; // a frame of a cancelled render
+  // Frames are drawn one after another in the order they arrived: their
+  // PNGs decode concurrently, and a pass's frame must not be drawn (and
+  // become studio.lastHeader) after the next pass's.
+  let drawing = Promise.resolve();
+  const onFrame = (header, blob) => {
+    if (header.job !== job) return; // a frame of an older request
+    drawing = drawing.then(() => drawFrame(header, blob)).catch((e) => studio.errors.push(String(e)));
+  };
+  const drawFrame = async (header, blob) => {
     const bitmap = await createImageBitmap(blob);
+    if (header.job !== job) return; // superseded while it decoded
     const ctx = $("image").getContext("2d");
     ctx.imageSmoothingEnabled = header.coarse;
     ctx.drawImage(bitmap, 0, 0, W, H);
     studio.frames += 1;
     studio.lastHeader = header;
     studio.lastPng = blob;
+    if (studio.headers) studio.headers.push(header); // kept when a script asks (benches/)
     if (header.done) studio.done += 1;
     if (header.coarse && studio.firstCoarseMs === undefined) studio.firstCoarseMs = header.elapsed_ms;
     showImage(true);
@@ -111,7 +129,8 @@ async function main() {
     const rerender = JSON.stringify(needs) !== JSON.stringify(layerSettings);
     layerSettings = needs;
     layer = image;
-    if (rerender) render(); else Net.send({ type: "layer", layer });
+    if (rerender) render();
+    else Net.send({ type: "layer", job: (studio.job = ++job), layer });
   };
   $("layer").addEventListener("change", setLayer);
   $("bounce-k").addEventListener("change", setLayer);

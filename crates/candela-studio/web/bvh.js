@@ -1,12 +1,17 @@
 // BVH mode (the CS184 visualiser): the current node's box in white, its
 // left child in red and its right child in green, its primitives
-// highlighted; descend with l / r, go up with u.
+// highlighted; descend with l / r, go up with u. The tree is the one the
+// panel's current `bvh` setting builds.
 "use strict";
 const Bvh = {
   node: null,
+  // The `bvh` setting of the tree shown (undefined: the starting one).
+  kind: undefined,
   async show(index, scene, positions) {
-    const v = await Net.json("/api/bvh?node=" + index);
+    const kind = Panel.changes.bvh ?? undefined;
+    const v = await Net.json("/api/bvh?node=" + index + (kind ? "&bvh=" + encodeURIComponent(kind) : ""));
     this.node = v;
+    this.kind = kind;
     const lines = [{ points: boxEdges(v.node.min, v.node.max), color: [1, 1, 1] }];
     const colors = [[1, 0.3, 0.3], [0.3, 1, 0.3]];
     // Children are drawn shrunk a little, so that edges they share with

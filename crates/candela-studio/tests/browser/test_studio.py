@@ -127,10 +127,6 @@ def test_bvh_mode_shows_the_root_and_its_two_children(page):
     page.wait_for_function(f"window.studio.bvh.node().node.index === {right['index']}")
 
 
-# Known intermittent hang (1 of 4 runs on 2026-11-29): the cell render's
-# final frame never reached the page within 30 s. Not yet diagnosed; kept
-# running (an unexpected pass is reported) rather than skipped.
-@pytest.mark.xfail(reason="intermittent: the cell render's final frame is sometimes never shown", strict=False)
 def test_a_cell_render_changes_only_the_cell(page):
     before = read_png(last_png(page))
     done = page.evaluate("window.studio.done")
@@ -198,7 +194,7 @@ def frame_of_layer(page, layer):
 
 
 def test_layers_show_the_film_and_the_integrator_views(page, out_dir):
-    for layer in ["albedo", "normal", "samples", "std_error", "depth", "cost"]:
+    for layer in ["albedo", "normal", "samples", "std_error", "depth", "cost", "cost_nodes", "cost_tests"]:
         page.select_option("#layer", layer)
         colours = frame_of_layer(page, layer)
         # Without adaptive sampling every pixel has the same count: one colour.
