@@ -20,7 +20,7 @@ pub use direct::LightingMode;
 pub use path::PathSettings;
 pub use record::PathRecorder;
 
-use crate::film::SampleValue;
+use crate::film::{SampleValue, Splat};
 use crate::geometry::Ray;
 use crate::material::Material;
 use crate::sampling::Sampler;
@@ -31,14 +31,20 @@ use crate::stats::RayCounts;
 use candela_bvh::TraversalStats;
 use glam::{Vec2, Vec3};
 
-/// Per-thread mutable state of a render: statistics only, so that results
-/// never depend on which thread rendered what.
+/// Per-thread mutable state of a render: statistics, and the splats of
+/// light subpaths waiting to be added to the film (whose sums are exact
+/// and order-free, `film/splat.rs`), so that results never depend on which
+/// thread rendered what.
 #[derive(Debug, Default)]
 pub struct ThreadContext {
     /// Rays traced and traversal work.
     pub rays: RayCounts,
     /// Path segments traced (camera ray included), for the mean path length.
     pub path_segments: u64,
+    /// Splats of the light subpaths traced so far.
+    pub splats: Vec<Splat>,
+    /// Light subpaths traced so far.
+    pub light_paths: u64,
 }
 
 /// The AOVs of one camera sample, filled in by the integrator at the camera

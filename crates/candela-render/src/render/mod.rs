@@ -8,7 +8,10 @@
 //! uniformly sampled image. Every sample is a pure function of (seed,
 //! pixel, sample index), and each pixel adds its samples in index order, so
 //! the film is bit-identical for any thread count, tiling and pass
-//! schedule, with or without adaptive sampling.
+//! schedule, with or without adaptive sampling. Light subpaths (light
+//! tracing, BDPT) belong to the camera sample that traced them; their
+//! splats are added to the film after each pass in exact fixed-point sums
+//! (`film/splat.rs`), so they keep that property.
 //!
 //! Library users call [`render`] (or [`render_with`] for cancellation and
 //! rich progress) and get a [`Film`] of mergeable sums: films of disjoint
@@ -21,7 +24,7 @@ mod tile;
 
 pub use control::{Cancel, Progress, RenderControl};
 
-use crate::film::{Adaptive, Film, PixelRect};
+use crate::film::{Adaptive, Film, PixelRect, SplatLayer};
 use crate::integrator::IntegratorSettings;
 use crate::sampling::SamplerKind;
 use crate::scene::Scene;
@@ -168,6 +171,8 @@ pub fn render_with(
         ..Default::default()
     };
     let mut chunk = 1;
+    let mut splats = SplatLayer::default();
+    let (width, height) = (scene.camera.width, scene.camera.height);
     let rays = AtomicU64::new(0);
     let stop = loop {
         let left: u64 = tiles.iter().map(|t| t.samples_left(&range)).sum();
@@ -198,6 +203,9 @@ pub fn render_with(
         {
             stats.rays += result.ctx.rays;
             if complete {
+                // Exact integer sums: the order of tiles does not matter.
+                splats.add(width, height, &result.ctx.splats);
+                splats.light_paths += result.ctx.light_paths;
                 stats.path_segments += result.ctx.path_segments;
                 stats.invalid_samples += result.invalid;
                 stats.samples += result.samples;
@@ -216,7 +224,9 @@ pub fn render_with(
             None => break StopReason::TimeBudget,
         }
     };
-    let film = assemble(&tiles, scene.camera.width, scene.camera.height);
+    let mut film = assemble(&tiles, width, height);
+    stats.invalid_samples += splats.invalid;
+    film.splats = splats;
     stats.converged_pixels = tiles.iter().map(TileState::converged_count).sum();
     stats.render_time = start.elapsed();
     Ok(RenderOutput { film, stats, stop })
