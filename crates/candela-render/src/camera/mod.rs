@@ -6,10 +6,16 @@
 //! rectangle of half extents [`Camera::orthographic`] around the eye). How it is placed is decided in [`framing`]: the
 //! CS184 orbit rule (the default for `.dae` files, so users see the images
 //! they know) or the literal camera of the file.
+//!
+//! Its importance (`We`, its densities, and connecting a point to the
+//! lens), which light tracing and bidirectional methods need, is in
+//! `importance.rs`: [`Camera::we`], [`Camera::pdf_we`], [`Camera::sample_wi`].
 
 pub mod framing;
+mod importance;
 mod view;
 
+pub use importance::CameraWiSample;
 pub use view::CameraView;
 
 use crate::geometry::Ray;

@@ -13,10 +13,11 @@
 use super::{luminance, LightSample};
 use crate::geometry::Frame;
 use crate::sampling::warp::{
-    square_to_uniform_cone, square_to_uniform_triangle, uniform_cone_pdf, Parallelogram,
+    square_to_uniform_cone, square_to_uniform_sphere, square_to_uniform_triangle, uniform_cone_pdf,
+    Parallelogram,
 };
 use crate::shading::MaterialTextures;
-use crate::shape::sphere_uv;
+use crate::shape::{gamma, sphere_uv, SurfacePoint};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 use std::sync::Arc;
@@ -109,22 +110,12 @@ impl AreaLight {
     /// caller sampling the light many times computes once.
     pub(super) fn sample_li_with_area(&self, p: Vec3, u: Vec2, area: f32) -> Option<LightSample> {
         let (q, normal, l) = match &self.shape {
-            AreaShape::Triangle { v, normal } => {
-                let b = square_to_uniform_triangle(u);
-                let l = match &self.textured {
-                    // The corner weights of q, as `surface_hit` interpolates UVs.
-                    Some(t) => t.at(b.x * t.uvs[0] + b.y * t.uvs[1] + (1.0 - b.x - b.y) * t.uvs[2]),
-                    None => self.radiance,
-                };
-                (
-                    b.x * v[0] + b.y * v[1] + (1.0 - b.x - b.y) * v[2],
-                    *normal,
-                    l,
-                )
-            }
-            AreaShape::Rect { shape, normal } => (shape.sample(u), *normal, self.radiance),
             AreaShape::Sphere { center, radius } => {
                 return self.sample_sphere(p, *center, *radius, u)
+            }
+            _ => {
+                let (point, l) = self.sample_point(u);
+                (point.p, point.n, l)
             }
         };
         let d = q - p;
@@ -144,6 +135,63 @@ impl AreaLight {
             distance,
             pdf: dist2 / (cos_light * area),
         })
+    }
+
+    /// A point uniform by area on the surface, with its error bound and
+    /// emitting normal, and the radiance it emits (textured: at its UV).
+    /// Light sampling (triangles, rectangles) and emission sampling share
+    /// it.
+    pub(super) fn sample_point(&self, u: Vec2) -> (SurfacePoint, Vec3) {
+        match &self.shape {
+            AreaShape::Triangle { v, normal } => {
+                let b = square_to_uniform_triangle(u);
+                let b2 = 1.0 - b.x - b.y;
+                let l = match &self.textured {
+                    // The corner weights of q, as `surface_hit` interpolates UVs.
+                    Some(t) => t.at(b.x * t.uvs[0] + b.y * t.uvs[1] + b2 * t.uvs[2]),
+                    None => self.radiance,
+                };
+                let p = b.x * v[0] + b.y * v[1] + b2 * v[2];
+                // Interpolation error, as `triangle.rs` bounds a hit's.
+                let p_error =
+                    gamma(7) * ((b.x * v[0]).abs() + (b.y * v[1]).abs() + (b2 * v[2]).abs());
+                (
+                    SurfacePoint {
+                        p,
+                        p_error,
+                        n: *normal,
+                    },
+                    l,
+                )
+            }
+            AreaShape::Rect { shape, normal } => {
+                let p = shape.sample(u);
+                let p_error = gamma(5)
+                    * (shape.origin.abs() + (u.x * shape.edge0).abs() + (u.y * shape.edge1).abs());
+                (
+                    SurfacePoint {
+                        p,
+                        p_error,
+                        n: *normal,
+                    },
+                    self.radiance,
+                )
+            }
+            AreaShape::Sphere { center, radius } => {
+                let n = square_to_uniform_sphere(u);
+                let local = n * *radius;
+                let p = *center + local;
+                let p_error = gamma(5) * local.abs() + gamma(1) * p.abs();
+                let l = match &self.textured {
+                    Some(t) => {
+                        let (su, sv) = sphere_uv(*center, p);
+                        t.at(Vec2::new(su, sv))
+                    }
+                    None => self.radiance,
+                };
+                (SurfacePoint { p, p_error, n }, l)
+            }
+        }
     }
 
     /// Spheres seen from outside are sampled uniformly in the cone they

@@ -14,12 +14,17 @@
 //! except spheres seen from outside, sampled uniformly in the cone they
 //! subtend. Emitters are one-sided: they emit on the side of their normal.
 //!
+//! Methods that start paths at the lights (light tracing, BDPT) sample
+//! rays leaving them with [`Light::sample_le`] and [`Light::pdf_le`]
+//! (`emission.rs`), and choose the light with [`LightSet::choose_emitter`].
+//!
 //! Lights at infinity that rays can escape to (the ambient sky, the
 //! environment map) also answer [`Light::le`], the radiance an escaping ray
 //! sees, so the path tracer handles all of them in one place.
 
 mod area;
 mod delta;
+mod emission;
 mod envmap;
 #[cfg(test)]
 mod envmap_tests;
@@ -31,6 +36,7 @@ mod tests;
 
 pub use area::{AreaLight, AreaShape, TexturedEmission};
 pub use delta::{DirectionalLight, PointLight, SpotLight};
+pub use emission::{LightEmission, SceneSphere};
 pub use envmap::{EnvironmentLight, EnvironmentMap, EnvironmentOptions};
 pub use infinite::AmbientLight;
 pub use set::LightSet;

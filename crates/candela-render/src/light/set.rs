@@ -25,6 +25,10 @@ pub struct LightSet {
     /// Surface area per light (0 for lights without one), computed once
     /// instead of per light sample.
     area: Vec<f32>,
+    /// Running sum of every light's probability of being chosen to emit
+    /// (delta lights included), and that probability per light.
+    emit_cdf: Vec<f32>,
+    emit_pmf: Vec<f32>,
 }
 
 impl LightSet {
@@ -69,6 +73,7 @@ impl LightSet {
             running += w / total;
             cdf.push(running);
         }
+        let (emit_pmf, emit_cdf) = emission_pmf(&lights, scene_radius);
         let area = lights
             .iter()
             .map(|l| match l {
@@ -85,6 +90,8 @@ impl LightSet {
             cdf,
             pmf,
             prim_light: by_kind,
+            emit_cdf,
+            emit_pmf,
         }
     }
 
@@ -131,6 +138,30 @@ impl LightSet {
         self.pmf[i as usize]
     }
 
+    /// Chooses the light a light subpath starts from: any light, delta
+    /// lights included, in proportion to [`Light::power`] (the figure that
+    /// also weighs next-event estimation's choice; for spot lights an upper
+    /// bound that ignores the falloff, for lights at infinity the flux
+    /// through the scene's disk: only the variance depends on it, any
+    /// positive probability is unbiased). Uniform when no light reports a
+    /// positive power. Returns (light index, probability).
+    pub fn choose_emitter(&self, u: f32) -> Option<(u32, f32)> {
+        if self.emit_cdf.is_empty() {
+            return None;
+        }
+        let k = self
+            .emit_cdf
+            .partition_point(|&c| c <= u)
+            .min(self.emit_cdf.len() - 1);
+        Some((k as u32, self.emit_pmf[k]))
+    }
+
+    /// Probability that [`LightSet::choose_emitter`] picks light `i` (what
+    /// a camera path that hits light `i` needs for its MIS weight).
+    pub fn emitter_pmf(&self, i: u32) -> f32 {
+        self.emit_pmf[i as usize]
+    }
+
     /// The light of emissive primitive `prim`, if it is one.
     pub fn light_of_prim(&self, prim: PrimRef) -> Option<u32> {
         match self.prim_light[prim.kind() as usize].get(prim.index() as usize) {
@@ -159,6 +190,42 @@ impl LightSet {
             light => light.pdf_li(p, wi, p_light),
         }
     }
+}
+
+/// Every light's probability of being chosen to emit, in proportion to
+/// its power (uniform when no power is positive), and the running sum.
+fn emission_pmf(lights: &[Light], scene_radius: f32) -> (Vec<f32>, Vec<f32>) {
+    let mut weights: Vec<f32> = lights
+        .iter()
+        .map(|l| {
+            let p = l.power(scene_radius);
+            if p.is_finite() {
+                p.max(0.0)
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let total: f32 = weights.iter().sum();
+    if !(total > 0.0 && total.is_finite()) {
+        weights.iter_mut().for_each(|w| *w = 1.0);
+    }
+    let total: f32 = weights.iter().sum();
+    let pmf: Vec<f32> = weights.iter().map(|w| w / total).collect();
+    let mut running = 0.0;
+    let mut cdf: Vec<f32> = pmf
+        .iter()
+        .map(|p| {
+            running += p;
+            running
+        })
+        .collect();
+    // Rounding must not leave u near 1 past the last light that can be
+    // chosen (nor let it pick a zero-probability light after it).
+    if let Some(last) = pmf.iter().rposition(|&p| p > 0.0) {
+        cdf[last..].iter_mut().for_each(|c| *c = 1.0);
+    }
+    (pmf, cdf)
 }
 
 #[cfg(test)]

@@ -17,7 +17,7 @@ use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
 use crate::camera::{Camera, CameraView};
 use crate::geometry::Ray;
-use crate::light::{EnvironmentMap, EnvironmentOptions, LightSet};
+use crate::light::{EnvironmentMap, EnvironmentOptions, LightSet, SceneSphere};
 use crate::material::Material;
 use crate::shape::SurfaceHit;
 use crate::texture::TextureCache;
@@ -112,6 +112,8 @@ pub struct Scene {
     /// through cut-outs: `visibility.rs`).
     pub has_cutouts: bool,
     accel: Accel,
+    /// The sphere around the description's bounding box.
+    scene_sphere: SceneSphere,
     /// Time spent building the acceleration structure.
     pub build_time: Duration,
 }
@@ -148,6 +150,10 @@ impl Scene {
             .bounds()
             .unwrap_or((glam::Vec3::ZERO, glam::Vec3::ZERO));
         let scene_radius = 0.5 * (hi - lo).length();
+        let scene_sphere = SceneSphere {
+            center: 0.5 * (lo + hi),
+            radius: scene_radius,
+        };
         // The caller's environment (the CLI's `-e`) replaces the file's.
         let environment = match &opts.environment {
             Some(map) => Some(map.clone()),
@@ -185,6 +191,7 @@ impl Scene {
             warnings,
             has_cutouts,
             accel,
+            scene_sphere,
             build_time,
         })
     }
@@ -200,6 +207,13 @@ impl Scene {
         }
         apply_lens(&mut camera, opts)?;
         Ok(camera)
+    }
+
+    /// The sphere around the scene's bounding box: where lights at infinity
+    /// emit from ([`crate::light::Light::sample_le`]), and the radius their
+    /// power is measured with.
+    pub fn scene_sphere(&self) -> SceneSphere {
+        self.scene_sphere
     }
 
     /// The material with index `i`.
