@@ -10,12 +10,15 @@
 //! `()`, which records nothing at no cost, and [`inspect`] passes one that
 //! builds the path records the viewer shows.
 
+pub mod bdpt;
 pub mod direct;
 pub mod inspect;
+pub mod light_tracer;
 mod normals;
 pub mod path;
 pub mod record;
 
+pub use bdpt::BidirSettings;
 pub use direct::LightingMode;
 pub use path::PathSettings;
 pub use record::PathRecorder;
@@ -129,9 +132,16 @@ pub fn sample_recorded<R: PathRecorder>(
 ) -> SampleValue {
     let work_before = ctx.rays.traversal;
     let mut aov = FirstHitAov::default();
-    let mut radiance = match settings.path_settings() {
-        None => normals::normals(scene, ray, ctx, &mut aov),
-        Some(path) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov, rec),
+    let mut radiance = match (settings.estimator, settings.path_settings()) {
+        (Estimator::Light, _) => {
+            light_tracer::light_trace(scene, &settings.bidir_settings(), sampler, ctx)
+        }
+        (Estimator::Bdpt, _) => {
+            let bidir = settings.bidir_settings();
+            bdpt::bdpt_radiance(scene, ray, &bidir, sampler, ctx, &mut aov)
+        }
+        (_, None) => normals::normals(scene, ray, ctx, &mut aov),
+        (_, Some(path)) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov, rec),
     };
     if let Some(clamp) = settings.clamp {
         let brightest = radiance.max_element();

@@ -1,7 +1,7 @@
 //! What each camera sample computes: the estimator and its options.
 
 use super::{check, SettingsError};
-use crate::integrator::{LightingMode, PathSettings};
+use crate::integrator::{BidirSettings, LightingMode, PathSettings};
 use serde::{Deserialize, Serialize};
 use std::ops::RangeInclusive;
 
@@ -20,6 +20,13 @@ pub enum Estimator {
     Direct,
     /// Light that reached the camera after two or more bounces.
     Indirect,
+    /// Light tracing: particles from the lights joined to the camera (all
+    /// light arrives as splats; surfaces seen only through mirrors or glass
+    /// stay black). `-m` counts bounces as for path tracing.
+    Light,
+    /// Bidirectional path tracing with MIS over every (s, t) strategy
+    /// (Veach 1997). `-m` counts bounces as for path tracing.
+    Bdpt,
 }
 
 /// Bounce count from which Russian roulette may end a path.
@@ -30,8 +37,8 @@ pub const ROULETTE_FROM: u32 = 3;
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 #[serde(default)]
 pub struct IntegratorSettings {
-    /// Estimator: path tracing, or a CS184 view (normals, direct or
-    /// indirect light only).
+    /// Estimator: path tracing, light tracing, bidirectional path tracing,
+    /// or a CS184 view (normals, direct or indirect light only).
     #[serde(rename = "integrator")]
     #[cfg_attr(feature = "cli", arg(id = "integrator", long = "integrator", value_enum, default_value_t = IntegratorSettings::default().estimator))]
     pub estimator: Estimator,
@@ -117,7 +124,15 @@ impl IntegratorSettings {
             Estimator::Direct => 0..=m.min(1),
             Estimator::Indirect => 2..=m,
             Estimator::Path | Estimator::Normals if !self.accumulate => m..=m,
-            Estimator::Path | Estimator::Normals => 0..=m,
+            Estimator::Path | Estimator::Normals | Estimator::Light | Estimator::Bdpt => 0..=m,
+        }
+    }
+
+    /// The bidirectional estimators' options (light tracing, BDPT).
+    pub fn bidir_settings(&self) -> BidirSettings {
+        BidirSettings {
+            max_depth: self.max_depth,
+            roulette_from: self.roulette.then_some(ROULETTE_FROM),
         }
     }
 
@@ -147,6 +162,8 @@ impl IntegratorSettings {
                 (Estimator::Normals, _) => Some("--integrator normals"),
                 (Estimator::Direct, _) => Some("--integrator direct"),
                 (Estimator::Indirect, _) => Some("--integrator indirect"),
+                (Estimator::Light, _) => Some("--integrator light"),
+                (Estimator::Bdpt, _) => Some("--integrator bdpt"),
             };
             if let Some(view) = view {
                 check(
@@ -157,6 +174,15 @@ impl IntegratorSettings {
                     format_args!("only with the path integrator adding every bounce, not {view}"),
                 )?;
             }
+        }
+        if matches!(self.estimator, Estimator::Light | Estimator::Bdpt) {
+            check(
+                self.accumulate,
+                "accumulate",
+                "-o",
+                0,
+                "1 with light tracing and BDPT (they add every bounce)",
+            )?;
         }
         if let Some(c) = self.clamp {
             let ok = c.is_finite() && c > 0.0;
