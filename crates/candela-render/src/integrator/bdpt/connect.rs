@@ -113,7 +113,7 @@ pub(crate) fn connect_to_camera(
         return None;
     }
     let cs = scene.camera.sample_wi(qs.p, u_lens)?;
-    if !(cs.pdf > 0.0) || cs.we == Vec3::ZERO {
+    if (cs.pdf.is_nan() || cs.pdf <= 0.0) || cs.we == Vec3::ZERO {
         return None;
     }
     let mut camera = Vertex::new(
@@ -221,7 +221,7 @@ fn sample_light_vertex(scene: &Scene, pt: &Vertex, u_light: f32, u_pos: Vec2) ->
     let light = scene.lights.get(index);
     let mut v = if light.is_infinite() {
         let ls = light.sample_li(pt.p, u_pos)?;
-        if !(ls.pdf > 0.0) {
+        if ls.pdf.is_nan() || ls.pdf <= 0.0 {
             return None;
         }
         let kind = VertexKind::Light {
@@ -239,7 +239,7 @@ fn sample_light_vertex(scene: &Scene, pt: &Vertex, u_light: f32, u_pos: Vec2) ->
         v
     } else {
         let e = light.sample_le(u_pos, Vec2::splat(0.5), &scene.scene_sphere())?;
-        if !(e.pdf_pos > 0.0) {
+        if e.pdf_pos.is_nan() || e.pdf_pos <= 0.0 {
             return None;
         }
         let kind = VertexKind::Light {

@@ -176,7 +176,7 @@ impl Walk {
             let kind = VertexKind::Surface { hit, frame, bsdf };
             let mut v = Vertex::new(kind, hit.p, hit.ng, frame.z, beta);
             let prev = path.last().expect("a walk starts from a vertex");
-            v.pdf_fwd = prev.to_area(pdf_dir, &v);
+            v.pdf_fwd = prev.area_density(pdf_dir, &v);
             path.push(v);
             if path.len() >= self.max_vertices {
                 break;
@@ -207,14 +207,14 @@ impl Walk {
             let n = path.len();
             path[n - 1].delta = specular;
             let here = path[n - 1];
-            path[n - 2].pdf_rev = here.to_area(pdf_rev, &path[n - 2]);
+            path[n - 2].pdf_rev = here.area_density(pdf_rev, &path[n - 2]);
             ray = Ray::new(hit.spawn_origin(wi), wi);
             ctx.rays.bounce += 1;
             bounces += 1;
             if let Some(from) = self.roulette_from {
                 if bounces >= from {
                     let survive = ((beta * eta_scale).max_element() / start).min(1.0);
-                    if !(survive > 0.0) || sampler.next_1d() >= survive {
+                    if (survive.is_nan() || survive <= 0.0) || sampler.next_1d() >= survive {
                         break;
                     }
                     beta /= survive;

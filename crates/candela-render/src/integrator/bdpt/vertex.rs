@@ -11,6 +11,9 @@ use crate::shape::SurfaceHit;
 use glam::Vec3;
 
 /// What a vertex is.
+// Vertices live in two small per-sample vectors; boxing the surface
+// variant would allocate per vertex.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum VertexKind {
     /// The lens point a camera subpath starts from.
@@ -142,7 +145,7 @@ impl Vertex {
 
     /// Converts a solid-angle density at this vertex toward `next` into a
     /// density per unit area at `next`.
-    pub fn to_area(&self, pdf_dir: f32, next: &Vertex) -> f32 {
+    pub fn area_density(&self, pdf_dir: f32, next: &Vertex) -> f32 {
         if next.infinite {
             return pdf_dir;
         }
@@ -177,7 +180,7 @@ impl Vertex {
                 bsdf.pdf(frame.to_local(wp), frame.to_local(wn))
             }
         };
-        self.to_area(pdf_dir, next)
+        self.area_density(pdf_dir, next)
     }
 
     /// The light (if any) this vertex is on: a light vertex's own, an
