@@ -85,7 +85,7 @@ impl Camera {
         }
         let dir = ray.dir.normalize_or_zero();
         let cos = dir.dot(self.forward);
-        if !(cos > 0.0) {
+        if cos.is_nan() || cos <= 0.0 {
             return None;
         }
         let d = Vec2::new(dir.dot(self.right), dir.dot(self.up)) / cos;
@@ -150,7 +150,7 @@ impl Camera {
         let p_lens = self.eye + self.right * lens.x + self.up * lens.y;
         let to_lens = p_lens - p;
         let dist2 = to_lens.length_squared();
-        if !(dist2 > 0.0) {
+        if dist2.is_nan() || dist2 <= 0.0 {
             return None;
         }
         let distance = dist2.sqrt();

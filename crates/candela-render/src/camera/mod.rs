@@ -13,6 +13,8 @@
 
 pub mod framing;
 mod importance;
+#[cfg(test)]
+mod importance_tests;
 mod view;
 
 pub use importance::CameraWiSample;

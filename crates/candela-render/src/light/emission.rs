@@ -212,7 +212,7 @@ impl AreaLight {
     /// its emitting normal.
     fn sample_le(&self, u_pos: Vec2, u_dir: Vec2) -> Option<LightEmission> {
         let area = self.shape.area();
-        if !(area > 0.0) {
+        if area.is_nan() || area <= 0.0 {
             return None;
         }
         let (point, le) = self.sample_point(u_pos);

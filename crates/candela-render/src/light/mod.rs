@@ -25,6 +25,8 @@
 mod area;
 mod delta;
 mod emission;
+#[cfg(test)]
+mod emission_tests;
 mod envmap;
 #[cfg(test)]
 mod envmap_tests;
