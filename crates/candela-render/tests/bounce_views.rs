@@ -5,6 +5,10 @@
 //! and a view that leaves out a vertex's light samples skips their
 //! dimensions, so the only difference allowed is f32 rounding in the order
 //! the contributions are added (a few ulps of the pixel value).
+//!
+//! The per-bounce layers (`--bounce-layers K`) of one render hold, layer k,
+//! the very values a `--bounce k` render adds, in the same order: they
+//! equal those renders bit for bit, and add up to the beauty image.
 
 mod common;
 
@@ -115,5 +119,91 @@ fn bounce_images_add_up_to_the_full_image() {
                 sum_of(&per_k[2..]),
             );
         }
+    }
+}
+
+fn layered(
+    scene: &Scene,
+    integrator: IntegratorSettings,
+    sampler: SamplerKind,
+    threads: usize,
+    tile: u32,
+) -> Film {
+    let settings = RenderSettings {
+        spp: 4,
+        seed: 17,
+        integrator,
+        sampler,
+        threads,
+        tile,
+        ..Default::default()
+    };
+    let out = render(scene, &settings, &|_| {}).expect("render runs");
+    assert_eq!(out.stats.invalid_samples, 0);
+    out.film
+}
+
+#[test]
+fn bounce_layers_are_the_bounce_views_of_one_render() {
+    let scene = scene();
+    for sampler in [SamplerKind::Sobol, SamplerKind::Independent] {
+        for lighting in [
+            LightingMode::Mis,
+            LightingMode::Light,
+            LightingMode::Hemisphere,
+        ] {
+            let label = format!("{lighting:?}, {sampler:?}");
+            let full = film(&scene, with(lighting, |_| {}), sampler);
+            let settings = with(lighting, |s| s.bounce_layers = Some(DEPTH));
+            let layers = layered(&scene, settings.clone(), sampler, 2, 8);
+            let names: Vec<String> = (0..=DEPTH).map(|k| format!("bounce_{k}")).collect();
+            assert_eq!(layers.layers.names(), names);
+            // Asking for layers leaves the image as it was, bit for bit.
+            assert_eq!(layers.pixels, full.pixels, "{label}: the beauty changed");
+            // Layer k is the `--bounce k` render, sum for sum.
+            for k in 0..=DEPTH {
+                let view = film(&scene, with(lighting, |s| s.bounce = Some(k)), sampler);
+                let mut lit = 0;
+                for (i, p) in view.pixels.iter().enumerate() {
+                    let layer = layers.layers.pixel(i)[k as usize];
+                    assert_eq!(layer, p.radiance, "{label}: bounce {k}, pixel {i}");
+                    lit += (layer.max_element() > 0.0) as u32;
+                }
+                assert!(lit > 0, "{label}: bounce {k} is black");
+            }
+            // With K = -m the layers split every term of the image.
+            let total: Vec<DVec3> = (0..layers.pixels.len())
+                .map(|i| layers.layers.pixel(i).iter().sum())
+                .collect();
+            assert_same(&format!("{label}: sum of the layers"), &full, total);
+            // Any thread count and tiling give the same layers.
+            assert_eq!(layered(&scene, settings, sampler, 1, 5), layers, "{label}");
+        }
+    }
+}
+
+#[test]
+fn fewer_bounce_layers_than_bounces_keep_the_first_ones() {
+    let scene = scene();
+    let lighting = LightingMode::Mis;
+    let sampler = SamplerKind::Sobol;
+    let all = layered(
+        &scene,
+        with(lighting, |s| s.bounce_layers = Some(DEPTH)),
+        sampler,
+        2,
+        8,
+    );
+    let first = layered(
+        &scene,
+        with(lighting, |s| s.bounce_layers = Some(1)),
+        sampler,
+        2,
+        8,
+    );
+    assert_eq!(first.layers.names(), ["bounce_0", "bounce_1"]);
+    assert_eq!(first.pixels, all.pixels);
+    for i in 0..all.pixels.len() {
+        assert_eq!(first.layers.pixel(i), &all.layers.pixel(i)[..2]);
     }
 }

@@ -8,19 +8,22 @@
 //! count. Tiles, threads, cells, sample ranges and machines merge by adding
 //! these sums, and the adaptive sampler's confidence test
 //! ([`adaptive::converged`]) reads the same numbers (Tungsten's
-//! `SampleRecord`). The image is resolved only at the end.
+//! `SampleRecord`). The image is resolved only at the end. A film may also
+//! carry extra named RGB layers ([`layers`]) that merge the same way.
 //!
 //! Light tracing and BDPT also add *splats* to pixels other than the
 //! sample's own; they are kept apart, in exact fixed-point sums
 //! ([`splat`]), and added to the camera samples' mean when resolving.
 
 pub mod adaptive;
+pub mod layers;
 pub mod output;
 mod rect;
 pub mod splat;
 mod sums;
 
 pub use adaptive::Adaptive;
+pub use layers::FilmLayers;
 pub use output::{write_film, OutputError, OutputFormat, OutputOptions};
 pub use rect::PixelRect;
 pub use splat::{Splat, SplatLayer};
@@ -40,16 +43,33 @@ pub struct Film {
     pub pixels: Vec<PixelSums>,
     /// Light subpaths' splats (empty for unidirectional renders).
     pub splats: SplatLayer,
+    /// Extra named layers (none unless the integrator declared some).
+    pub layers: FilmLayers,
 }
 
 /// Why two films cannot be merged.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("cannot merge a {b_w}x{b_h} film into a {a_w}x{a_h} film")]
-pub struct FilmSizeMismatch {
-    a_w: u32,
-    a_h: u32,
-    b_w: u32,
-    b_h: u32,
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum FilmMismatch {
+    /// The films differ in size.
+    #[error("cannot merge a {b_w}x{b_h} film into a {a_w}x{a_h} film")]
+    Size {
+        /// Width of the film merged into.
+        a_w: u32,
+        /// Its height.
+        a_h: u32,
+        /// Width of the film merged.
+        b_w: u32,
+        /// Its height.
+        b_h: u32,
+    },
+    /// The films carry different extra layers.
+    #[error("cannot merge a film with layers [{}] into one with layers [{}]", .b.join(", "), .a.join(", "))]
+    Layers {
+        /// Layers of the film merged into.
+        a: Vec<String>,
+        /// Layers of the film merged.
+        b: Vec<String>,
+    },
 }
 
 /// The smallest, mean and largest sample count over some pixels: what a
@@ -72,6 +92,7 @@ impl Film {
             height,
             pixels: vec![PixelSums::default(); width as usize * height as usize],
             splats: SplatLayer::default(),
+            layers: FilmLayers::default(),
         }
     }
 
@@ -88,24 +109,32 @@ impl Film {
         &self.pixels[y as usize * self.width as usize + x as usize]
     }
 
-    /// Adds another film of the same size, pixel by pixel. Merging is how
-    /// cells, sample ranges or machines combine: the sums of disjoint cells
-    /// give the full frame exactly (adding zero is exact); two sample ranges
-    /// give the union up to f64 rounding (addition is not associative).
-    /// Splats merge exactly in every case (fixed point, see [`splat`]).
-    pub fn merge(&mut self, other: &Film) -> Result<(), FilmSizeMismatch> {
+    /// Adds another film of the same size and extra layers, pixel by
+    /// pixel. Merging is how cells, sample ranges or machines combine: the
+    /// sums of disjoint cells give the full frame exactly (adding zero is
+    /// exact); two sample ranges give the union up to f64 rounding
+    /// (addition is not associative). Splats merge exactly in every case
+    /// (fixed point, see [`splat`]).
+    pub fn merge(&mut self, other: &Film) -> Result<(), FilmMismatch> {
         if (self.width, self.height) != (other.width, other.height) {
-            return Err(FilmSizeMismatch {
+            return Err(FilmMismatch::Size {
                 a_w: self.width,
                 a_h: self.height,
                 b_w: other.width,
                 b_h: other.height,
             });
         }
+        if self.layers.names() != other.layers.names() {
+            return Err(FilmMismatch::Layers {
+                a: self.layers.names().to_vec(),
+                b: other.layers.names().to_vec(),
+            });
+        }
         for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
             a.merge(b);
         }
         self.splats.merge(&other.splats);
+        self.layers.merge(&other.layers);
         Ok(())
     }
 

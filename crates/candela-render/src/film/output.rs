@@ -1,6 +1,7 @@
 //! Film to file: the one path every front end (CLI, Python, viewer, tests)
 //! writes a render by. PNG goes through a tone map; EXR keeps linear
-//! radiance with the layers asked for; with adaptive sampling the CS184
+//! radiance with the layers asked for and every extra layer the film
+//! carries ([`super::FilmLayers`]); with adaptive sampling the CS184
 //! sample-rate image is written beside the output. Every file is written
 //! atomically, so a failed write leaves no file.
 
@@ -101,6 +102,9 @@ pub fn write_film(
                     extra.push((name.to_string(), LayerData::Gray(film.cost(measure))));
                 }
             }
+            for (index, name) in film.layers.names().iter().enumerate() {
+                extra.push((name.clone(), LayerData::Rgb(film.layer(index))));
+            }
             let layers = ExrLayers {
                 albedo: opts.aovs.then(|| film.albedo()),
                 normal: opts.aovs.then(|| film.normal()),
@@ -151,5 +155,25 @@ mod tests {
             format!("{}: the output must end in .png or .exr", path.display())
         );
         assert!(!path.exists());
+    }
+
+    #[test]
+    fn extra_layers_go_into_the_exr_by_name() {
+        let dir = candela_testkit::TempDir::new("film-layers");
+        let path = dir.path().join("layers.exr");
+        let names = vec!["bounce_0".to_string(), "bounce_1".to_string()];
+        let mut film = Film::with_layers(3, 2, names.clone());
+        let values = [glam::Vec3::new(1.0, 2.0, 3.0), glam::Vec3::splat(0.5)];
+        film.pixels[4].add_sample(values[0] + values[1]);
+        film.layers.add(4, &values);
+        write_film(&path, &film, &OutputOptions::default()).expect("written");
+        let read = candela_image::read_exr_layers(&path).expect("read back");
+        let layers: Vec<(&str, &LayerData)> =
+            read.extra.iter().map(|(n, d)| (n.as_str(), d)).collect();
+        assert_eq!(layers.len(), 2, "{:?}", read.extra);
+        for (index, name) in names.iter().enumerate() {
+            let (_, data) = layers.iter().find(|(n, _)| n == name).expect("layer");
+            assert_eq!(**data, LayerData::Rgb(film.layer(index)));
+        }
     }
 }

@@ -56,6 +56,9 @@ pub struct Splat {
     pub y: u32,
     /// Radiance times the pixel count (see the module docs).
     pub value: Vec3,
+    /// Which sums it goes to: 0 the image, k ≥ 1 the film's extra layer
+    /// k − 1 (per-strategy layers of BDPT).
+    pub layer: u32,
 }
 
 /// Per-pixel fixed-point splat sums and the light-subpath count.
@@ -68,6 +71,9 @@ pub struct SplatLayer {
     pub light_paths: u64,
     /// Splats dropped as non-finite or too large.
     pub invalid: u64,
+    /// Fixed-point sums of the extra layers, `layer_sums[pixel · n + k]`
+    /// for the film's n extra layers; empty until a layer splat arrives.
+    pub layer_sums: Vec<[i128; 3]>,
 }
 
 /// The fixed-point value of one channel, or `None` if it cannot be added.
@@ -82,9 +88,10 @@ impl SplatLayer {
         self.sums.is_empty() && self.light_paths == 0 && self.invalid == 0
     }
 
-    /// Adds `splats` to a film of `width` × `height` pixels; splats outside
-    /// it (never produced by a camera) are counted invalid.
-    pub fn add(&mut self, width: u32, height: u32, splats: &[Splat]) {
+    /// Adds `splats` to a film of `width` × `height` pixels with `layers`
+    /// extra layers; splats outside it (never produced by a camera) or for
+    /// a layer it does not have are counted invalid.
+    pub fn add(&mut self, width: u32, height: u32, layers: usize, splats: &[Splat]) {
         if splats.is_empty() {
             return;
         }
@@ -98,15 +105,23 @@ impl SplatLayer {
                 to_fixed(s.value.y),
                 to_fixed(s.value.z),
             ];
-            match fixed {
-                [Some(r), Some(g), Some(b)] if s.x < width && s.y < height => {
-                    let sum = &mut self.sums[s.y as usize * width as usize + s.x as usize];
-                    sum[0] += r;
-                    sum[1] += g;
-                    sum[2] += b;
+            let inside = s.x < width && s.y < height && (s.layer as usize) <= layers;
+            let ([Some(r), Some(g), Some(b)], true) = (fixed, inside) else {
+                self.invalid += 1;
+                continue;
+            };
+            let pixel = s.y as usize * width as usize + s.x as usize;
+            let sum = if s.layer == 0 {
+                &mut self.sums[pixel]
+            } else {
+                if self.layer_sums.len() != n * layers {
+                    self.layer_sums = vec![[0; 3]; n * layers];
                 }
-                _ => self.invalid += 1,
-            }
+                &mut self.layer_sums[pixel * layers + s.layer as usize - 1]
+            };
+            sum[0] += r;
+            sum[1] += g;
+            sum[2] += b;
         }
     }
 
@@ -122,8 +137,30 @@ impl SplatLayer {
                 }
             }
         }
+        if !other.layer_sums.is_empty() {
+            if self.layer_sums.is_empty() {
+                self.layer_sums = vec![[0; 3]; other.layer_sums.len()];
+            }
+            for (a, b) in self.layer_sums.iter_mut().zip(&other.layer_sums) {
+                for c in 0..3 {
+                    a[c] += b[c];
+                }
+            }
+        }
         self.light_paths += other.light_paths;
         self.invalid += other.invalid;
+    }
+
+    /// What extra layer `k` (of `layers`) of pixel `i` gets from splats:
+    /// their sum over all light subpaths (zero with none).
+    pub fn layer_mean(&self, i: usize, k: usize, layers: usize) -> Vec3 {
+        match self.layer_sums.get(i * layers + k) {
+            Some(s) if self.light_paths > 0 => {
+                let sum = DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64) * SPLAT_QUANTUM;
+                (sum / self.light_paths as f64).as_vec3()
+            }
+            _ => Vec3::ZERO,
+        }
     }
 
     /// The splat sum of pixel `i` in radiance units (f64).
@@ -152,6 +189,7 @@ mod tests {
             x,
             y,
             value: Vec3::splat(v),
+            layer: 0,
         }
     }
 
@@ -162,14 +200,14 @@ mod tests {
             .map(|i| splat(i % 3, 0, (1.0 + i as f32 * 0.37).powi(3) * 1e-3))
             .collect();
         let mut forward = SplatLayer::default();
-        forward.add(3, 1, &splats);
+        forward.add(3, 1, 0, &splats);
         let mut reversed = SplatLayer::default();
         let mut rev = splats.clone();
         rev.reverse();
-        reversed.add(3, 1, &rev);
+        reversed.add(3, 1, 0, &rev);
         let (mut a, mut b) = (SplatLayer::default(), SplatLayer::default());
-        a.add(3, 1, &splats[..333]);
-        b.add(3, 1, &splats[333..]);
+        a.add(3, 1, 0, &splats[..333]);
+        b.add(3, 1, 0, &splats[333..]);
         b.merge(&a);
         assert_eq!(forward, reversed);
         assert_eq!(forward.sums, b.sums);
@@ -183,6 +221,7 @@ mod tests {
         layer.add(
             2,
             2,
+            0,
             &[
                 splat(0, 0, f32::NAN),
                 splat(1, 1, 1e30),

@@ -8,11 +8,13 @@
 //! and the sample's traversal work (the AOVs). The path integrator tells a
 //! [`PathRecorder`] every step it takes ([`record`]); the renderer passes
 //! `()`, which records nothing at no cost, and [`inspect`] passes one that
-//! builds the path records the viewer shows.
+//! builds the path records the viewer shows. [`layers`] fills the film's
+//! extra layers (per-bounce light) through the same seam.
 
 pub mod bdpt;
 pub mod direct;
 pub mod inspect;
+pub mod layers;
 pub mod light_tracer;
 mod normals;
 pub mod path;
@@ -20,6 +22,7 @@ pub mod record;
 
 pub use bdpt::BidirSettings;
 pub use direct::LightingMode;
+pub use layers::{layer_names, layered_pixel_sample};
 pub use path::PathSettings;
 pub use record::PathRecorder;
 
@@ -138,16 +141,13 @@ pub fn sample_recorded<R: PathRecorder>(
         }
         (Estimator::Bdpt, _) => {
             let bidir = settings.bidir_settings();
-            bdpt::bdpt_radiance(scene, ray, &bidir, sampler, ctx, &mut aov)
+            bdpt::bdpt_radiance(scene, ray, &bidir, sampler, ctx, &mut aov, rec)
         }
         (_, None) => normals::normals(scene, ray, ctx, &mut aov),
         (_, Some(path)) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov, rec),
     };
-    if let Some(clamp) = settings.clamp {
-        let brightest = radiance.max_element();
-        if brightest > clamp {
-            radiance *= clamp / brightest;
-        }
+    if let Some(scale) = clamp_scale(radiance, settings.clamp) {
+        radiance *= scale;
     }
     let work = ctx.rays.traversal;
     SampleValue {
@@ -160,6 +160,15 @@ pub fn sample_recorded<R: PathRecorder>(
             prims_tested: work.prims_tested - work_before.prims_tested,
         },
     }
+}
+
+/// The factor `--clamp` scales a sample of this radiance by, if it is
+/// brighter than the clamp: the brightest channel comes down to the clamp,
+/// the hue is kept.
+fn clamp_scale(radiance: Vec3, clamp: Option<f32>) -> Option<f32> {
+    let clamp = clamp?;
+    let brightest = radiance.max_element();
+    (brightest > clamp).then(|| clamp / brightest)
 }
 
 /// Radiance (or the colour the integrator shows) along the camera `ray`,

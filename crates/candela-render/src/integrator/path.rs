@@ -89,7 +89,9 @@ pub fn path_radiance<R: PathRecorder>(
         let Some(hit) = scene.intersect_visible(&ray, &mut ctx.rays.traversal) else {
             rec.escape(depth, &ray, beta);
             if settings.bounces.contains(&depth) {
-                l += beta * escaped_radiance(scene, &ray, prev, settings, rec);
+                let term = beta * escaped_radiance(scene, &ray, prev, settings, rec);
+                l += term;
+                rec.radiance_term(depth, term);
             }
             break PathEnd::Escaped;
         };
@@ -101,7 +103,9 @@ pub fn path_radiance<R: PathRecorder>(
         if settings.bounces.contains(&depth) && hit.front_face {
             if let Some(le) = material.emission_at(hit.uv) {
                 let mis_weight = emitter_weight(scene, &ray, &hit, prev, settings);
-                l += beta * le * mis_weight;
+                let term = beta * le * mis_weight;
+                l += term;
+                rec.radiance_term(depth, term);
                 rec.emission(&EmissionEvent {
                     light: scene.lights.light_of_prim(hit.prim),
                     radiance: le,
@@ -118,10 +122,12 @@ pub fn path_radiance<R: PathRecorder>(
         };
         let frame = shading_frame(scene, &hit, material);
         if !bsdf.flags().is_specular() {
-            l += beta
+            let term = beta
                 * direct_at_vertex(
                     scene, &hit, &frame, &bsdf, depth, settings, sampler, ctx, rec,
                 );
+            l += term;
+            rec.radiance_term(depth + 1, term);
         }
         // A direction on the wrong side of the true surface would leak
         // through it (shading normals bend, geometry does not): the

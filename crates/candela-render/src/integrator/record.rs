@@ -156,6 +156,19 @@ pub trait PathRecorder {
     #[inline(always)]
     fn roulette(&mut self, survive: f32, survived: bool, beta: Vec3) {}
 
+    /// The path adds `value` (throughput and weights included) to its
+    /// radiance: light that reached the camera after `bounces` bounces.
+    /// Called beside each `l +=` with the very value added, so that a
+    /// recorder can split the radiance by bounce count exactly
+    /// ([`super::layers`]).
+    #[inline(always)]
+    fn radiance_term(&mut self, bounces: u32, value: Vec3) {}
+
+    /// A bidirectional strategy's contribution to the sample's own pixel,
+    /// for extra layer `layer` (`bdpt/techniques.rs`).
+    #[inline(always)]
+    fn technique(&mut self, layer: usize, value: Vec3) {}
+
     /// The path ended; `radiance` is what it carries to the camera
     /// (before the firefly clamp).
     #[inline(always)]

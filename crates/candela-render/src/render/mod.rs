@@ -25,7 +25,7 @@ mod tile;
 pub use control::{Cancel, Progress, RenderControl};
 
 use crate::film::{Adaptive, Film, PixelRect, SplatLayer};
-use crate::integrator::IntegratorSettings;
+use crate::integrator::{layer_names, IntegratorSettings};
 use crate::sampling::SamplerKind;
 use crate::scene::Scene;
 use crate::stats::RenderStats;
@@ -161,10 +161,11 @@ pub fn render_with(
         .build()?;
     let range = settings.samples();
     let start = Instant::now();
+    let names = layer_names(&settings.integrator);
     let mut tiles: Vec<TileState> = region
         .tiles(settings.tile)
         .into_iter()
-        .map(TileState::new)
+        .map(|rect| TileState::new(rect, &names))
         .collect();
     let mut stats = RenderStats {
         threads: pool.current_num_threads(),
@@ -204,7 +205,7 @@ pub fn render_with(
             stats.rays += result.ctx.rays;
             if complete {
                 // Exact integer sums: the order of tiles does not matter.
-                splats.add(width, height, &result.ctx.splats);
+                splats.add(width, height, names.len(), &result.ctx.splats);
                 splats.light_paths += result.ctx.light_paths;
                 stats.path_segments += result.ctx.path_segments;
                 stats.invalid_samples += result.invalid;
@@ -224,7 +225,7 @@ pub fn render_with(
             None => break StopReason::TimeBudget,
         }
     };
-    let mut film = assemble(&tiles, width, height);
+    let mut film = assemble(&tiles, width, height, names);
     stats.invalid_samples += splats.invalid;
     film.splats = splats;
     stats.converged_pixels = tiles.iter().map(TileState::converged_count).sum();
@@ -277,11 +278,15 @@ impl PassContext<'_> {
 
 /// The full-frame film from the tiles' sums; pixels outside every tile
 /// (outside the cell) stay empty.
-fn assemble(tiles: &[TileState], width: u32, height: u32) -> Film {
-    let mut film = Film::new(width, height);
+fn assemble(tiles: &[TileState], width: u32, height: u32, layer_names: Vec<String>) -> Film {
+    let mut film = Film::with_layers(width, height, layer_names);
     for tile in tiles {
-        for ((x, y), sums) in tile.rect.pixels().zip(&tile.sums) {
-            film.pixels[y as usize * width as usize + x as usize] = *sums;
+        for (i, ((x, y), sums)) in tile.rect.pixels().zip(&tile.sums).enumerate() {
+            let pixel = y as usize * width as usize + x as usize;
+            film.pixels[pixel] = *sums;
+            if !film.layers.is_empty() {
+                film.layers.copy_pixel(pixel, &tile.layers, i);
+            }
         }
     }
     film

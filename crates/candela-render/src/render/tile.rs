@@ -4,13 +4,15 @@
 //! pixel where it left off, one sample index after the other, adding every
 //! sample to the pixel's sums in index order: the sums therefore depend
 //! only on (seed, pixel, sample range, adaptive rule), never on the tile
-//! size, the thread count or how the samples were cut into passes.
+//! size, the thread count or how the samples were cut into passes. The
+//! extra layers' sums ([`FilmLayers`]) follow the same order.
 
 use super::RenderSettings;
-use crate::film::{PixelRect, PixelSums};
-use crate::integrator::{pixel_sample, ThreadContext};
+use crate::film::{FilmLayers, PixelRect, PixelSums};
+use crate::integrator::{layered_pixel_sample, pixel_sample, ThreadContext};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use glam::Vec3;
 use std::ops::Range;
 
 /// A tile's pixels between passes.
@@ -22,6 +24,8 @@ pub(crate) struct TileState {
     pub sums: Vec<PixelSums>,
     /// Pixels that stopped early (converged under adaptive sampling).
     pub converged: Vec<bool>,
+    /// Sums of the extra layers per pixel (none unless asked for).
+    pub layers: FilmLayers,
 }
 
 /// What a tile did in one pass.
@@ -37,12 +41,13 @@ pub(crate) struct TilePass {
 }
 
 impl TileState {
-    pub fn new(rect: PixelRect) -> Self {
+    pub fn new(rect: PixelRect, layer_names: &[String]) -> Self {
         let n = rect.area() as usize;
         Self {
             rect,
             sums: vec![PixelSums::default(); n],
             converged: vec![false; n],
+            layers: FilmLayers::new(layer_names.to_vec(), n),
         }
     }
 
@@ -81,6 +86,9 @@ impl TileState {
             invalid: 0,
         };
         let mut sampler = Sampler::new(settings.sampler, settings.seed);
+        // One value per extra layer for the current sample; with none, the
+        // samples take the plain path below.
+        let mut layer_values = vec![Vec3::ZERO; self.layers.len()];
         for (i, (x, y)) in self.rect.pixels().enumerate() {
             if !self.active(i, &range) {
                 continue;
@@ -94,17 +102,32 @@ impl TileState {
                 if index >= range.end {
                     break;
                 }
-                let s = pixel_sample(
-                    &settings.integrator,
-                    scene,
-                    (x, y),
-                    index,
-                    &mut sampler,
-                    &mut out.ctx,
-                    &mut (),
-                );
+                let s = if layer_values.is_empty() {
+                    pixel_sample(
+                        &settings.integrator,
+                        scene,
+                        (x, y),
+                        index,
+                        &mut sampler,
+                        &mut out.ctx,
+                        &mut (),
+                    )
+                } else {
+                    layered_pixel_sample(
+                        &settings.integrator,
+                        scene,
+                        (x, y),
+                        index,
+                        &mut sampler,
+                        &mut out.ctx,
+                        &mut layer_values,
+                    )
+                };
                 if s.radiance.is_finite() {
                     sums.add(&s);
+                    if !layer_values.is_empty() {
+                        out.state.layers.add(i, &layer_values);
+                    }
                 } else {
                     // Counted, never hidden: a NaN is a bug to report.
                     out.invalid += 1;

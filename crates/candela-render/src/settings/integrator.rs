@@ -75,6 +75,21 @@ pub struct IntegratorSettings {
     #[cfg_attr(feature = "cli", arg(long, value_name = "K"))]
     pub bounce: Option<u32>,
 
+    /// Also write the light of each bounce count 0..=K as an EXR layer of
+    /// its own, `bounce_0` ... `bounce_K`: layer k is the `--bounce k` image
+    /// of the same seed, so a whole bounce series comes from one render.
+    /// With K equal to the maximum depth the layers add up to the image. At
+    /// most the maximum depth; path tracing adding every bounce only.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "K"))]
+    pub bounce_layers: Option<u32>,
+
+    /// With `--integrator bdpt`: write the contribution of every strategy
+    /// (s light vertices, t camera vertices) as extra EXR layers `s{s}_t{t}`
+    /// (MIS-weighted: they add up to the image) and `s{s}_t{t}_unweighted`
+    /// (each strategy's own estimate of that path length: Veach's figure).
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub technique_layers: bool,
+
     /// Russian roulette on the path throughput from the third bounce on
     /// (unbiased; `--no-roulette` is `--roulette false`).
     #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", action = clap::ArgAction::Set,
@@ -98,6 +113,8 @@ impl Default for IntegratorSettings {
             light_samples: 1,
             accumulate: true,
             bounce: None,
+            bounce_layers: None,
+            technique_layers: false,
             roulette: true,
             clamp: None,
         }
@@ -133,6 +150,7 @@ impl IntegratorSettings {
         BidirSettings {
             max_depth: self.max_depth,
             roulette_from: self.roulette.then_some(ROULETTE_FROM),
+            technique_layers: self.technique_layers,
         }
     }
 
@@ -147,11 +165,16 @@ impl IntegratorSettings {
     }
 
     pub(super) fn validate(&self) -> Result<(), SettingsError> {
-        if let Some(k) = self.bounce {
+        let bounce_options = [
+            ("bounce", "--bounce", self.bounce),
+            ("bounce_layers", "--bounce-layers", self.bounce_layers),
+        ];
+        for (key, flag, k) in bounce_options {
+            let Some(k) = k else { continue };
             check(
                 k <= self.max_depth,
-                "bounce",
-                "--bounce",
+                key,
+                flag,
                 k,
                 format_args!("at most the maximum depth (-m {})", self.max_depth),
             )?;
@@ -168,8 +191,8 @@ impl IntegratorSettings {
             if let Some(view) = view {
                 check(
                     false,
-                    "bounce",
-                    "--bounce",
+                    key,
+                    flag,
                     k,
                     format_args!("only with the path integrator adding every bounce, not {view}"),
                 )?;
@@ -182,6 +205,22 @@ impl IntegratorSettings {
                 "-o",
                 0,
                 "1 with light tracing and BDPT (they add every bounce)",
+            )?;
+        }
+        check(
+            !self.technique_layers || self.estimator == Estimator::Bdpt,
+            "technique_layers",
+            "--technique-layers",
+            true,
+            "only with --integrator bdpt",
+        )?;
+        if let (Some(k), Some(layers)) = (self.bounce, self.bounce_layers) {
+            check(
+                false,
+                "bounce_layers",
+                "--bounce-layers",
+                layers,
+                format_args!("not with --bounce {k}, which keeps one bounce count only"),
             )?;
         }
         if let Some(c) = self.clamp {

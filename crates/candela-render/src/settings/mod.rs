@@ -122,13 +122,14 @@ fn hints_json(h: &RenderHints) -> Map<String, Value> {
     m
 }
 
-/// Memory a render of `width` × `height` pixels claims beyond the scene:
-/// the film's sums twice (the tiles' working copies and the merged film)
-/// and the images written from it (beauty, albedo, normal, counts, depth,
-/// cost).
-pub fn film_bytes(width: u32, height: u32) -> u64 {
-    let per_pixel = 2 * std::mem::size_of::<PixelSums>() as u64 + 4 * 12 + 8 + 3 * 4;
-    width as u64 * height as u64 * per_pixel
+/// Memory a render of `width` × `height` pixels with `layers` extra layers
+/// claims beyond the scene: the film's sums twice (the tiles' working
+/// copies and the merged film) and the images written from it (beauty,
+/// albedo, normal, counts, depth, cost, and each extra layer).
+pub fn film_bytes(width: u32, height: u32, layers: usize) -> u64 {
+    let sums = std::mem::size_of::<PixelSums>() as u64 + layers as u64 * 24;
+    let images = 4 * 12 + 8 + 3 * 4 + layers as u64 * 12;
+    width as u64 * height as u64 * (2 * sums + images)
 }
 
 impl Settings {
@@ -140,7 +141,8 @@ impl Settings {
         self.output.validate()?;
         self.run.validate()?;
         let (w, h) = (self.image.width, self.image.height);
-        let need = film_bytes(w, h) as f64 / (1u64 << 30) as f64;
+        let layers = crate::integrator::layer_names(&self.integrator).len();
+        let need = film_bytes(w, h, layers) as f64 / (1u64 << 30) as f64;
         check(
             need <= self.run.memory_limit,
             "width, height",

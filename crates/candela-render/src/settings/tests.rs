@@ -136,13 +136,18 @@ fn a_film_that_would_not_fit_is_refused_unless_the_limit_is_raised() {
     assert!(e.contains("--memory-limit"), "{e}");
     // The estimate is what the limit compares: 1e10 pixels need far more
     // than 16 GiB, and a limit above the estimate lets the render through.
-    let need = film_bytes(100_000, 100_000) as f64 / (1u64 << 30) as f64;
+    let need = film_bytes(100_000, 100_000, 0) as f64 / (1u64 << 30) as f64;
     assert!(need > 1000.0);
     let mut raised = changes(huge);
     raised.insert("memory_limit".into(), json!(need * 1.01));
     assert!(Settings::from_json(&raised).is_ok());
     // An ordinary HD render is far below the default limit.
-    assert!(film_bytes(1920, 1080) < (1 << 30));
+    assert!(film_bytes(1920, 1080, 0) < (1 << 30));
+    // Each extra layer adds its sums (twice) and its image.
+    assert_eq!(
+        film_bytes(10, 10, 3) - film_bytes(10, 10, 0),
+        100 * 3 * (2 * 24 + 12)
+    );
 }
 
 #[test]
@@ -242,6 +247,35 @@ fn a_bounce_beyond_the_depth_or_with_a_cs184_view_is_refused() {
     assert_eq!(
         refused(json!({"bounce": -1})).split(':').next(),
         Some("setting `bounce` = -1")
+    );
+}
+
+#[test]
+fn bounce_layers_name_one_layer_per_bounce_count_up_to_the_depth() {
+    let i = |v: Value| Settings::from_json(&changes(v)).unwrap().integrator;
+    let names = crate::integrator::layer_names;
+    assert!(names(&i(json!({}))).is_empty());
+    assert_eq!(
+        names(&i(json!({"max_depth": 3, "bounce_layers": 2}))),
+        ["bounce_0", "bounce_1", "bounce_2"]
+    );
+    // The layers do not narrow what the image shows.
+    assert_eq!(
+        i(json!({"max_depth": 3, "bounce_layers": 2})).bounces(),
+        0..=3
+    );
+    assert_eq!(
+        refused(json!({"max_depth": 3, "bounce_layers": 4})),
+        "bounce_layers (--bounce-layers) 4: at most the maximum depth (-m 3)"
+    );
+    assert_eq!(
+        refused(json!({"integrator": "direct", "bounce_layers": 1})),
+        "bounce_layers (--bounce-layers) 1: only with the path integrator adding every bounce, \
+         not --integrator direct"
+    );
+    assert_eq!(
+        refused(json!({"bounce": 1, "bounce_layers": 2})),
+        "bounce_layers (--bounce-layers) 2: not with --bounce 1, which keeps one bounce count only"
     );
 }
 

@@ -23,9 +23,10 @@
 pub(crate) mod connect;
 pub(crate) mod mis;
 pub(crate) mod subpath;
+pub mod techniques;
 pub(crate) mod vertex;
 
-use super::{FirstHitAov, ThreadContext};
+use super::{FirstHitAov, PathRecorder, ThreadContext};
 use crate::film::Splat;
 use crate::geometry::Ray;
 use crate::sampling::Sampler;
@@ -40,30 +41,38 @@ pub struct BidirSettings {
     pub max_depth: u32,
     /// Russian roulette from this bounce on (`None`: never).
     pub roulette_from: Option<u32>,
+    /// Fill the per-strategy layers ([`techniques`]).
+    pub technique_layers: bool,
 }
 
 /// The splat of a t = 1 contribution `l` landing at film position `film`
 /// (pixels): scaled by the pixel count, since the film divides splat sums
 /// by the number of light subpaths (see `film/splat.rs` and the camera's
-/// importance docs).
-pub(crate) fn splat_at(scene: &Scene, film: Vec2, l: Vec3) -> Splat {
+/// importance docs), for film layer `layer` (0 the image, k the extra
+/// layer k − 1).
+pub(crate) fn splat_at(scene: &Scene, film: Vec2, l: Vec3, layer: u32) -> Splat {
     let (w, h) = (scene.camera.width, scene.camera.height);
     Splat {
         x: (film.x.max(0.0) as u32).min(w - 1),
         y: (film.y.max(0.0) as u32).min(h - 1),
         value: l * (w as f32 * h as f32),
+        layer,
     }
 }
 
 /// Radiance of one BDPT camera sample along `camera_ray` (strategies with
-/// t ≥ 2); the t = 1 strategies go to `ctx.splats`.
-pub fn bdpt_radiance(
+/// t ≥ 2); the t = 1 strategies go to `ctx.splats`. With
+/// `settings.technique_layers`, every strategy's contribution also goes to
+/// its layers ([`techniques`]): t ≥ 2 to `rec`, t = 1 as tagged splats.
+#[allow(clippy::too_many_arguments)]
+pub fn bdpt_radiance<R: PathRecorder>(
     scene: &Scene,
     camera_ray: &Ray,
     settings: &BidirSettings,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
     aov: &mut FirstHitAov,
+    rec: &mut R,
 ) -> Vec3 {
     let m = settings.max_depth as usize;
     let mut light: Vec<Vertex> = Vec::with_capacity(m + 1);
@@ -96,16 +105,35 @@ pub fn bdpt_radiance(
             if s + t < 2 || s + t - 2 > m || (s == 1 && t == 1) {
                 continue;
             }
-            if let Some(c) = strategy(scene, &light, &camera, s, t, sampler, ctx) {
-                l += c;
+            let Some((c, w)) = strategy(scene, &light, &camera, s, t, sampler, ctx) else {
+                continue;
+            };
+            let layer = settings
+                .technique_layers
+                .then(|| techniques::layer_index(s, t));
+            match c.film {
+                Some(film) => {
+                    ctx.splats.push(splat_at(scene, film, c.l * w, 0));
+                    if let Some(i) = layer {
+                        ctx.splats
+                            .push(splat_at(scene, film, c.l * w, i as u32 + 1));
+                        ctx.splats.push(splat_at(scene, film, c.l, i as u32 + 2));
+                    }
+                }
+                None => {
+                    l += c.l * w;
+                    if let Some(i) = layer {
+                        rec.technique(i, c.l * w);
+                        rec.technique(i + 1, c.l);
+                    }
+                }
             }
         }
     }
     l
 }
 
-/// The weighted contribution of strategy (s, t) to the sample's pixel;
-/// t = 1 contributions are splatted and give `None`.
+/// Strategy (s, t)'s unweighted connection and its MIS weight.
 fn strategy(
     scene: &Scene,
     light: &[Vertex],
@@ -114,22 +142,12 @@ fn strategy(
     t: usize,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
-) -> Option<Vec3> {
+) -> Option<(connect::Connection, f32)> {
     let c = if t == 1 {
         connect::connect_to_camera(scene, light, s, sampler, ctx)?
     } else {
         connect::connect(scene, light, camera, s, t, sampler, ctx)?
     };
     let w = mis::mis_weight(scene, light, camera, c.sampled, s, t);
-    let value = c.l * w;
-    if !value.is_finite() {
-        return Some(value); // counted as an invalid sample by the film
-    }
-    match c.film {
-        Some(film) => {
-            ctx.splats.push(splat_at(scene, film, value));
-            None
-        }
-        None => Some(value),
-    }
+    Some((c, w))
 }
