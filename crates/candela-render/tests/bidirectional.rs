@@ -90,9 +90,10 @@ fn cs184_scene(
         .expect("scene loads")
         .scene;
     edit(&mut desc);
-    // The file's camera (49° wide): the CS184 framing of these files at
-    // test sizes is a 2° view, where light subpaths almost never reach
-    // the film and the tests would have little power.
+    // The file's camera (49° wide): the CS184 framing keeps CS184's focal
+    // length in pixels, so at test sizes it is a 2° view, where light
+    // subpaths almost never reach the film and the tests would have little
+    // power.
     let opts = SceneOptions {
         width,
         height,
