@@ -30,6 +30,13 @@ pub fn render_cell(
     if out.stop == StopReason::Cancelled {
         return Ok(None);
     }
+    if !out.film.splats.is_empty() {
+        // Light subpaths splat over the whole frame, which a cropped cell
+        // and the wire format (`wire.rs`) do not carry yet.
+        return Err(RenderError::Settings(
+            "light tracing and BDPT cannot be rendered in distributed cells yet".into(),
+        ));
+    }
     Ok(Some(PlacedFilm {
         film: crop(&out.film, cell),
         origin: (cell.x, cell.y),

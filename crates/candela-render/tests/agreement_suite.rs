@@ -41,6 +41,11 @@ const HEMISPHERE_POINT_LIGHT: &str =
 /// mass shrinking with samples is a heavy tail, not a bias (which would
 /// fail more blocks with more samples); MIS, which finds that light by BSDF
 /// sampling, passes on the same scene.
+const BDPT_SEES_THE_CAUSTIC: &str = "the point light seen through the glass pane \
+    lights the room by a caustic that BDPT's light subpaths find and the reference (a \
+    unidirectional path tracer, which can never connect to a delta light through a \
+    specular surface) cannot: the two converge to different images here (measured: \
+    max block |z| 11.6, global 2.9 at 48x40, 8 spp x 16 batches)";
 const LIGHT_SAMPLING_NEAR_SPECULAR: &str = "light sampling alone on a Beckmann alpha = 0.025 \
      lobe is heavy-tailed: block means are far from normal at test budgets";
 
@@ -108,7 +113,10 @@ fn ci_cases() -> Vec<Case> {
             scene: glass_room,
             max_depth: 4,
             spp: 8,
-            excluded: &[(Method::Hemisphere, HEMISPHERE_POINT_LIGHT)],
+            excluded: &[
+                (Method::Hemisphere, HEMISPHERE_POINT_LIGHT),
+                (Method::Bdpt, BDPT_SEES_THE_CAUSTIC),
+            ],
             seed: 8,
         },
         Case {

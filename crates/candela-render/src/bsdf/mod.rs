@@ -24,7 +24,8 @@
 //! - **Radiance transport**: the path tracer carries radiance from lights to
 //!   the camera, so refraction scales by `1/η²` with η the relative IOR
 //!   (transmitted side over incident side of the light path as traced from
-//!   the camera); an adjoint (importance) transport would omit that factor.
+//!   the camera); the adjoint (importance) transport of light subpaths omits
+//!   that factor ([`TransportMode`], `transport.rs`).
 //!   Transmission then obeys the generalised reciprocity
 //!   f(wo, wi)·η(wi)² = f(wi, wo)·η(wo)², η(w) the absolute IOR on the side
 //!   of w; energy is conserved once refracted throughput is multiplied back
@@ -70,12 +71,16 @@ mod specular_tests;
 mod test_support;
 #[cfg(test)]
 mod thin_dielectric_tests;
+mod transport;
+#[cfg(test)]
+mod transport_tests;
 
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
 pub use metallic_roughness::MetallicRoughness;
 pub use plastic::Plastic;
 pub use rough_plastic::RoughPlastic;
+pub use transport::{shading_normal_correction, TransportMode};
 
 use rough_dielectric::RoughDielectric;
 

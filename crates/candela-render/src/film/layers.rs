@@ -111,7 +111,8 @@ impl Film {
     }
 
     /// Extra layer `index` resolved: per pixel, the sum of its sample
-    /// values over the pixel's sample count (black with no samples).
+    /// values over the pixel's sample count (black with no samples), plus
+    /// the layer's splats over the light-subpath count (as the image).
     ///
     /// # Panics
     /// If there is no layer `index`.
@@ -125,7 +126,9 @@ impl Film {
                 } else {
                     (sum / p.count as f64).as_vec3()
                 };
-                mean.to_array()
+                // Light subpaths' splats of this layer (`film/splat.rs`).
+                let splats = self.splats.layer_mean(i, index, self.layers.len());
+                (mean + splats).to_array()
             })
             .collect();
         RgbImage::from_pixels(self.width as usize, self.height as usize, pixels)

@@ -10,11 +10,16 @@
 //! ([`adaptive::converged`]) reads the same numbers (Tungsten's
 //! `SampleRecord`). The image is resolved only at the end. A film may also
 //! carry extra named RGB layers ([`layers`]) that merge the same way.
+//!
+//! Light tracing and BDPT also add *splats* to pixels other than the
+//! sample's own; they are kept apart, in exact fixed-point sums
+//! ([`splat`]), and added to the camera samples' mean when resolving.
 
 pub mod adaptive;
 pub mod layers;
 pub mod output;
 mod rect;
+pub mod splat;
 mod sums;
 pub mod wire;
 
@@ -22,6 +27,7 @@ pub use adaptive::Adaptive;
 pub use layers::FilmLayers;
 pub use output::{write_film, OutputError, OutputFormat, OutputOptions};
 pub use rect::PixelRect;
+pub use splat::{Splat, SplatLayer};
 pub use sums::{luminance, CostMeasure, PixelSums, SampleValue};
 
 use candela_image::{GrayImage, RgbImage};
@@ -36,6 +42,8 @@ pub struct Film {
     pub height: u32,
     /// Per-pixel sums.
     pub pixels: Vec<PixelSums>,
+    /// Light subpaths' splats (empty for unidirectional renders).
+    pub splats: SplatLayer,
     /// Extra named layers (none unless the integrator declared some).
     pub layers: FilmLayers,
 }
@@ -84,6 +92,7 @@ impl Film {
             width,
             height,
             pixels: vec![PixelSums::default(); width as usize * height as usize],
+            splats: SplatLayer::default(),
             layers: FilmLayers::default(),
         }
     }
@@ -105,7 +114,8 @@ impl Film {
     /// pixel. Merging is how cells, sample ranges or machines combine: the
     /// sums of disjoint cells give the full frame exactly (adding zero is
     /// exact); two sample ranges give the union up to f64 rounding
-    /// (addition is not associative).
+    /// (addition is not associative). Splats merge exactly in every case
+    /// (fixed point, see [`splat`]).
     pub fn merge(&mut self, other: &Film) -> Result<(), FilmMismatch> {
         if (self.width, self.height) != (other.width, other.height) {
             return Err(FilmMismatch::Size {
@@ -124,13 +134,22 @@ impl Film {
         for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
             a.merge(b);
         }
+        self.splats.merge(&other.splats);
         self.layers.merge(&other.layers);
         Ok(())
     }
 
-    /// The image: mean radiance per pixel.
+    /// The image: mean radiance per pixel, plus the pixel's splats over
+    /// all light subpaths ([`splat`]).
     pub fn resolve(&self) -> RgbImage {
-        self.rgb(PixelSums::mean)
+        if self.splats.light_paths == 0 {
+            return self.rgb(PixelSums::mean);
+        }
+        let pixels = (self.pixels.iter().enumerate())
+            .map(|(i, p)| (p.mean() + self.splats.mean(i)).to_array())
+            .collect();
+        RgbImage::from_pixels(self.width as usize, self.height as usize, pixels)
+            .expect("a film's pixel count matches its size")
     }
 
     /// Mean first-hit albedo per pixel (black where nothing was hit).
@@ -160,7 +179,8 @@ impl Film {
         self.gray(|p| p.mean_cost(measure))
     }
 
-    /// Standard error of each pixel's mean radiance, per channel.
+    /// Standard error of each pixel's mean radiance, per channel (of the
+    /// camera samples only: splats keep no squares).
     pub fn std_error(&self) -> RgbImage {
         self.rgb(PixelSums::std_error)
     }

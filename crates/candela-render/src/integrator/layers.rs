@@ -37,6 +37,9 @@ pub fn bounce_layer_name(k: u32) -> String {
 pub fn layer_names(settings: &IntegratorSettings) -> Vec<String> {
     // Estimators with layers of their own (e.g. per-strategy layers of
     // bidirectional methods) add their names here.
+    if settings.technique_layers {
+        return super::bdpt::techniques::layer_names(settings.max_depth);
+    }
     match settings.bounce_layers {
         Some(k) => (0..=k).map(bounce_layer_name).collect(),
         None => Vec::new(),
@@ -81,6 +84,13 @@ impl PathRecorder for BounceLayers<'_> {
     fn radiance_term(&mut self, bounces: u32, value: Vec3) {
         if let Some(layer) = self.layers.get_mut(bounces as usize) {
             *layer += value;
+        }
+    }
+
+    #[inline(always)]
+    fn technique(&mut self, layer: usize, value: Vec3) {
+        if let Some(l) = self.layers.get_mut(layer) {
+            *l += value;
         }
     }
 

@@ -11,19 +11,22 @@
 //! builds the path records the viewer shows. [`layers`] fills the film's
 //! extra layers (per-bounce light) through the same seam.
 
+pub mod bdpt;
 pub mod direct;
 pub mod inspect;
 pub mod layers;
+pub mod light_tracer;
 mod normals;
 pub mod path;
 pub mod record;
 
+pub use bdpt::BidirSettings;
 pub use direct::LightingMode;
 pub use layers::{layer_names, layered_pixel_sample};
 pub use path::PathSettings;
 pub use record::PathRecorder;
 
-use crate::film::SampleValue;
+use crate::film::{SampleValue, Splat};
 use crate::geometry::Ray;
 use crate::material::Material;
 use crate::sampling::Sampler;
@@ -34,14 +37,20 @@ use crate::stats::RayCounts;
 use candela_bvh::TraversalStats;
 use glam::{Vec2, Vec3};
 
-/// Per-thread mutable state of a render: statistics only, so that results
-/// never depend on which thread rendered what.
+/// Per-thread mutable state of a render: statistics, and the splats of
+/// light subpaths waiting to be added to the film (whose sums are exact
+/// and order-free, `film/splat.rs`), so that results never depend on which
+/// thread rendered what.
 #[derive(Debug, Default)]
 pub struct ThreadContext {
     /// Rays traced and traversal work.
     pub rays: RayCounts,
     /// Path segments traced (camera ray included), for the mean path length.
     pub path_segments: u64,
+    /// Splats of the light subpaths traced so far.
+    pub splats: Vec<Splat>,
+    /// Light subpaths traced so far.
+    pub light_paths: u64,
 }
 
 /// The AOVs of one camera sample, filled in by the integrator at the camera
@@ -126,9 +135,16 @@ pub fn sample_recorded<R: PathRecorder>(
 ) -> SampleValue {
     let work_before = ctx.rays.traversal;
     let mut aov = FirstHitAov::default();
-    let mut radiance = match settings.path_settings() {
-        None => normals::normals(scene, ray, ctx, &mut aov),
-        Some(path) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov, rec),
+    let mut radiance = match (settings.estimator, settings.path_settings()) {
+        (Estimator::Light, _) => {
+            light_tracer::light_trace(scene, &settings.bidir_settings(), sampler, ctx)
+        }
+        (Estimator::Bdpt, _) => {
+            let bidir = settings.bidir_settings();
+            bdpt::bdpt_radiance(scene, ray, &bidir, sampler, ctx, &mut aov, rec)
+        }
+        (_, None) => normals::normals(scene, ray, ctx, &mut aov),
+        (_, Some(path)) => path::path_radiance(scene, ray, &path, sampler, ctx, &mut aov, rec),
     };
     if let Some(scale) = clamp_scale(radiance, settings.clamp) {
         radiance *= scale;

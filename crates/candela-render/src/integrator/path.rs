@@ -146,7 +146,7 @@ pub fn path_radiance<R: PathRecorder>(
             beta,
         });
         if transmits {
-            eta_scale *= refraction_eta2(&bsdf, frame.to_local(hit.wo));
+            eta_scale *= bsdf.refraction_eta2(frame.to_local(hit.wo));
         }
         prev = Some(PrevVertex {
             p: hit.p,
@@ -214,30 +214,6 @@ fn direct_at_vertex<R: PathRecorder>(
         "direct_dimensions must count what estimate_direct draws"
     );
     direct
-}
-
-/// The squared relative index of refraction (far side over near side) of a
-/// refraction leaving direction `wo` (local frame): the factor `1/η²` that
-/// the dielectric put into the sample's weight. 1 for every other BSDF.
-fn refraction_eta2(bsdf: &Bsdf, wo: Vec3) -> f32 {
-    match *bsdf {
-        Bsdf::Glass { ior, .. } | Bsdf::Refraction { ior, .. } | Bsdf::RoughGlass { ior, .. } => {
-            let eta = if wo.z > 0.0 { ior } else { 1.0 / ior };
-            eta * eta
-        }
-        Bsdf::MetallicRoughness(m) => {
-            let eta = if wo.z > 0.0 { m.ior() } else { 1.0 / m.ior() };
-            eta * eta
-        }
-        // A thin pane passes light straight through: no change of medium.
-        Bsdf::Diffuse { .. }
-        | Bsdf::Mirror { .. }
-        | Bsdf::Microfacet { .. }
-        | Bsdf::ThinGlass { .. }
-        | Bsdf::Plastic(_)
-        | Bsdf::RoughPlastic(_)
-        | Bsdf::Conductor { .. } => 1.0,
-    }
 }
 
 /// MIS weight of emission found by the path itself (not by light sampling).

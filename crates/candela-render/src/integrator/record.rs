@@ -164,6 +164,11 @@ pub trait PathRecorder {
     #[inline(always)]
     fn radiance_term(&mut self, bounces: u32, value: Vec3) {}
 
+    /// A bidirectional strategy's contribution to the sample's own pixel,
+    /// for extra layer `layer` (`bdpt/techniques.rs`).
+    #[inline(always)]
+    fn technique(&mut self, layer: usize, value: Vec3) {}
+
     /// The path ended; `radiance` is what it carries to the camera
     /// (before the firefly clamp).
     #[inline(always)]

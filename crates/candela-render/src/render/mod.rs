@@ -8,7 +8,10 @@
 //! uniformly sampled image. Every sample is a pure function of (seed,
 //! pixel, sample index), and each pixel adds its samples in index order, so
 //! the film is bit-identical for any thread count, tiling and pass
-//! schedule, with or without adaptive sampling.
+//! schedule, with or without adaptive sampling. Light subpaths (light
+//! tracing, BDPT) belong to the camera sample that traced them; their
+//! splats are added to the film after each pass in exact fixed-point sums
+//! (`film/splat.rs`), so they keep that property.
 //!
 //! Library users call [`render`] (or [`render_with`] for cancellation and
 //! rich progress, [`render_from`] to continue a film and checkpoint it) and get a [`Film`] of mergeable sums: films of disjoint
@@ -16,14 +19,14 @@
 //! [`Film::merge`] into the film of the whole job.
 
 mod control;
-mod resume;
 mod info;
+mod resume;
 pub mod schedule;
 mod tile;
 
 pub use control::{Cancel, Progress, RenderControl};
-pub use resume::{Continuation, PassEnd};
 pub use info::integrator_name;
+pub use resume::{Continuation, PassEnd};
 
 use crate::film::{Adaptive, Film, PixelRect};
 use crate::integrator::{layer_names, IntegratorSettings};
@@ -201,6 +204,10 @@ pub fn render_from(
         ..Default::default()
     };
     let mut chunk = 1;
+    // A continued film brings its splats: integer sums, so adding the rest
+    // to them gives the uninterrupted render's sums exactly.
+    let mut splats = from.start.map(|f| f.splats.clone()).unwrap_or_default();
+    let (width, height) = (scene.camera.width, scene.camera.height);
     let rays = AtomicU64::new(0);
     let stop = loop {
         let left: u64 = tiles.iter().map(|t| t.samples_left(&range)).sum();
@@ -231,6 +238,9 @@ pub fn render_from(
         {
             stats.rays += result.ctx.rays;
             if complete {
+                // Exact integer sums: the order of tiles does not matter.
+                splats.add(width, height, names.len(), &result.ctx.splats);
+                splats.light_paths += result.ctx.light_paths;
                 stats.path_segments += result.ctx.path_segments;
                 stats.invalid_samples += result.invalid;
                 stats.samples += result.samples;
@@ -246,6 +256,7 @@ pub fn render_from(
                 tiles: &tiles,
                 size,
                 layer_names: &names,
+                splats: &splats,
                 stats: &stats,
                 elapsed: start.elapsed(),
             });
@@ -258,7 +269,9 @@ pub fn render_from(
             None => break StopReason::TimeBudget,
         }
     };
-    let film = assemble(&tiles, size.0, size.1, names);
+    let mut film = assemble(&tiles, width, height, names);
+    stats.invalid_samples += splats.invalid;
+    film.splats = splats;
     stats.converged_pixels = tiles.iter().map(TileState::converged_count).sum();
     stats.render_time = start.elapsed();
     Ok(RenderOutput { film, stats, stop })

@@ -33,6 +33,7 @@ pub struct PassEnd<'a> {
     pub(super) tiles: &'a [TileState],
     pub(super) size: (u32, u32),
     pub(super) layer_names: &'a [String],
+    pub(super) splats: &'a crate::film::SplatLayer,
     /// The statistics so far (of this render, not of the film it continued).
     pub stats: &'a RenderStats,
     /// Wall-clock time since this render started.
@@ -42,7 +43,14 @@ pub struct PassEnd<'a> {
 impl PassEnd<'_> {
     /// The full-frame film of every finished pass (a copy of the sums).
     pub fn film(&self) -> Film {
-        super::assemble(self.tiles, self.size.0, self.size.1, self.layer_names.to_vec())
+        let mut film = super::assemble(
+            self.tiles,
+            self.size.0,
+            self.size.1,
+            self.layer_names.to_vec(),
+        );
+        film.splats = self.splats.clone();
+        film
     }
 }
 

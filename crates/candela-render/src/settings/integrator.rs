@@ -1,7 +1,7 @@
 //! What each camera sample computes: the estimator and its options.
 
 use super::{check, SettingsError};
-use crate::integrator::{LightingMode, PathSettings};
+use crate::integrator::{BidirSettings, LightingMode, PathSettings};
 use serde::{Deserialize, Serialize};
 use std::ops::RangeInclusive;
 
@@ -20,6 +20,13 @@ pub enum Estimator {
     Direct,
     /// Light that reached the camera after two or more bounces.
     Indirect,
+    /// Light tracing: particles from the lights joined to the camera (all
+    /// light arrives as splats; surfaces seen only through mirrors or glass
+    /// stay black). `-m` counts bounces as for path tracing.
+    Light,
+    /// Bidirectional path tracing with MIS over every (s, t) strategy
+    /// (Veach 1997). `-m` counts bounces as for path tracing.
+    Bdpt,
 }
 
 /// Bounce count from which Russian roulette may end a path.
@@ -30,8 +37,8 @@ pub const ROULETTE_FROM: u32 = 3;
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 #[serde(default)]
 pub struct IntegratorSettings {
-    /// Estimator: path tracing, or a CS184 view (normals, direct or
-    /// indirect light only).
+    /// Estimator: path tracing, light tracing, bidirectional path tracing,
+    /// or a CS184 view (normals, direct or indirect light only).
     #[serde(rename = "integrator")]
     #[cfg_attr(feature = "cli", arg(id = "integrator", long = "integrator", value_enum, default_value_t = IntegratorSettings::default().estimator))]
     pub estimator: Estimator,
@@ -76,6 +83,13 @@ pub struct IntegratorSettings {
     #[cfg_attr(feature = "cli", arg(long, value_name = "K"))]
     pub bounce_layers: Option<u32>,
 
+    /// With `--integrator bdpt`: write the contribution of every strategy
+    /// (s light vertices, t camera vertices) as extra EXR layers `s{s}_t{t}`
+    /// (MIS-weighted: they add up to the image) and `s{s}_t{t}_unweighted`
+    /// (each strategy's own estimate of that path length: Veach's figure).
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub technique_layers: bool,
+
     /// Russian roulette on the path throughput from the third bounce on
     /// (unbiased; `--no-roulette` is `--roulette false`).
     #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", action = clap::ArgAction::Set,
@@ -100,6 +114,7 @@ impl Default for IntegratorSettings {
             accumulate: true,
             bounce: None,
             bounce_layers: None,
+            technique_layers: false,
             roulette: true,
             clamp: None,
         }
@@ -126,7 +141,16 @@ impl IntegratorSettings {
             Estimator::Direct => 0..=m.min(1),
             Estimator::Indirect => 2..=m,
             Estimator::Path | Estimator::Normals if !self.accumulate => m..=m,
-            Estimator::Path | Estimator::Normals => 0..=m,
+            Estimator::Path | Estimator::Normals | Estimator::Light | Estimator::Bdpt => 0..=m,
+        }
+    }
+
+    /// The bidirectional estimators' options (light tracing, BDPT).
+    pub fn bidir_settings(&self) -> BidirSettings {
+        BidirSettings {
+            max_depth: self.max_depth,
+            roulette_from: self.roulette.then_some(ROULETTE_FROM),
+            technique_layers: self.technique_layers,
         }
     }
 
@@ -161,6 +185,8 @@ impl IntegratorSettings {
                 (Estimator::Normals, _) => Some("--integrator normals"),
                 (Estimator::Direct, _) => Some("--integrator direct"),
                 (Estimator::Indirect, _) => Some("--integrator indirect"),
+                (Estimator::Light, _) => Some("--integrator light"),
+                (Estimator::Bdpt, _) => Some("--integrator bdpt"),
             };
             if let Some(view) = view {
                 check(
@@ -172,6 +198,22 @@ impl IntegratorSettings {
                 )?;
             }
         }
+        if matches!(self.estimator, Estimator::Light | Estimator::Bdpt) {
+            check(
+                self.accumulate,
+                "accumulate",
+                "-o",
+                0,
+                "1 with light tracing and BDPT (they add every bounce)",
+            )?;
+        }
+        check(
+            !self.technique_layers || self.estimator == Estimator::Bdpt,
+            "technique_layers",
+            "--technique-layers",
+            true,
+            "only with --integrator bdpt",
+        )?;
         if let (Some(k), Some(layers)) = (self.bounce, self.bounce_layers) {
             check(
                 false,

@@ -140,6 +140,18 @@ impl Settings {
         self.image.validate()?;
         self.output.validate()?;
         self.run.validate()?;
+        use crate::integrator::Estimator;
+        check(
+            self.run.checkpoint.is_none()
+                || !matches!(
+                    self.integrator.estimator,
+                    Estimator::Light | Estimator::Bdpt
+                ),
+            "checkpoint",
+            "--checkpoint",
+            "",
+            "checkpoints do not carry the light-subpath splats of --integrator light/bdpt yet",
+        )?;
         let (w, h) = (self.image.width, self.image.height);
         let layers = crate::integrator::layer_names(&self.integrator).len();
         let need = film_bytes(w, h, layers) as f64 / (1u64 << 30) as f64;

@@ -86,7 +86,7 @@ fn unknown_keys_and_wrong_types_are_named() {
     assert!(e.contains("max_depth"), "{e}");
     let e = refused(json!({"max_depth": "deep"}));
     assert!(e.starts_with("setting `max_depth` = \"deep\""), "{e}");
-    let e = refused(json!({"integrator": "bdpt"}));
+    let e = refused(json!({"integrator": "photons"}));
     assert!(e.starts_with("setting `integrator`"), "{e}");
 }
 

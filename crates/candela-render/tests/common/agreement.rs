@@ -30,7 +30,7 @@
 
 use candela_image::metrics::ztest::{z_test, BlockStats, ZTest};
 use candela_image::RgbImage;
-use candela_render::integrator::{IntegratorSettings, LightingMode};
+use candela_render::integrator::{Estimator, IntegratorSettings, LightingMode};
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::Scene;
 use std::time::Instant;
@@ -56,6 +56,9 @@ pub enum Method {
     /// Path tracing with multiple importance sampling of lights and BSDFs
     /// (the default, and the reference's estimator).
     Mis,
+    /// Bidirectional path tracing (`--integrator bdpt`), every strategy
+    /// weighted by the power heuristic.
+    Bdpt,
     // ADD ESTIMATORS HERE. Light tracing and BDPT land as variants of
     // `settings::Estimator`; give each a variant here, an arm in
     // `Method::integrator` and `Method::spp_factor`, and a place in
@@ -68,7 +71,12 @@ pub enum Method {
 
 impl Method {
     /// Every estimator the suite runs.
-    pub const ALL: [Method; 3] = [Method::Hemisphere, Method::LightSampling, Method::Mis];
+    pub const ALL: [Method; 4] = [
+        Method::Hemisphere,
+        Method::LightSampling,
+        Method::Mis,
+        Method::Bdpt,
+    ];
 
     /// Its integrator settings for light of up to `max_depth` bounces
     /// (Russian roulette on, as rendered by default).
@@ -77,6 +85,12 @@ impl Method {
             Method::Hemisphere => LightingMode::Hemisphere,
             Method::LightSampling => LightingMode::Light,
             Method::Mis => LightingMode::Mis,
+            Method::Bdpt => {
+                return IntegratorSettings {
+                    estimator: Estimator::Bdpt,
+                    ..IntegratorSettings::path(max_depth, LightingMode::Mis)
+                }
+            }
         };
         IntegratorSettings::path(max_depth, lighting)
     }
@@ -86,7 +100,7 @@ impl Method {
     pub fn spp_factor(self) -> u32 {
         match self {
             Method::Hemisphere => 4,
-            Method::LightSampling | Method::Mis => 1,
+            Method::LightSampling | Method::Mis | Method::Bdpt => 1,
         }
     }
 }

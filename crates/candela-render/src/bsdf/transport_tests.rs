@@ -1,0 +1,184 @@
+//! The adjoint relation of the transport modes: the importance BSDF is the
+//! radiance BSDF with its directions swapped, for the non-symmetric models
+//! (refraction) and with shading normals that differ from the true normal.
+
+use glam::{Vec2, Vec3};
+
+use super::transport::{shading_normal_correction, TransportMode};
+use super::{Bsdf, MetallicRoughness, MicrofacetDistribution};
+use crate::geometry::Frame;
+use crate::sampling::warp::square_to_uniform_sphere;
+use crate::sampling::{Sampler, SamplerKind};
+
+/// Relative agreement of two colours to 0.1 % (f32 half vectors near
+/// grazing pairs lose a few digits), with an absolute floor of 10⁻⁵ for the
+/// tiny values of such pairs; the two modes differ by η² ≈ 2.25 or by the
+/// shading-normal factor, far beyond that.
+fn assert_close(a: Vec3, b: Vec3, what: &str) {
+    let scale = a.abs().max(b.abs()).max_element().max(1e-2);
+    assert!(
+        (a - b).abs().max_element() <= 1e-3 * scale,
+        "{what}: {a} vs {b}"
+    );
+}
+
+/// Random unit direction pairs from a fixed seed.
+fn direction_pairs(n: u32) -> Vec<(Vec3, Vec3)> {
+    let mut sampler = Sampler::new(SamplerKind::Independent, 15);
+    (0..n)
+        .map(|i| {
+            sampler.start_pixel_sample(0, 0, i);
+            (
+                square_to_uniform_sphere(sampler.next_2d()),
+                square_to_uniform_sphere(sampler.next_2d()),
+            )
+        })
+        .collect()
+}
+
+fn transmitting_bsdfs() -> Vec<(&'static str, Bsdf)> {
+    vec![
+        (
+            "rough glass ggx",
+            Bsdf::RoughGlass {
+                distribution: MicrofacetDistribution::ggx(0.3),
+                reflectance: Vec3::new(0.9, 0.8, 1.0),
+                transmittance: Vec3::new(1.0, 0.7, 0.9),
+                ior: 1.5,
+            },
+        ),
+        (
+            "rough glass beckmann, ior < 1",
+            Bsdf::RoughGlass {
+                distribution: MicrofacetDistribution::beckmann(0.5),
+                reflectance: Vec3::ONE,
+                transmittance: Vec3::ONE,
+                ior: 0.8,
+            },
+        ),
+        (
+            "glTF transmission",
+            Bsdf::MetallicRoughness(MetallicRoughness::new(
+                Vec3::new(0.8, 0.6, 0.4),
+                0.0,
+                0.4,
+                1.0,
+                1.5,
+            )),
+        ),
+    ]
+}
+
+#[test]
+fn importance_bsdf_is_the_radiance_bsdf_with_directions_swapped() {
+    let mut transmitted = 0;
+    for (name, bsdf) in transmitting_bsdfs() {
+        for (wo, wi) in direction_pairs(4000) {
+            let importance = bsdf.f_mode(wo, wi, TransportMode::Importance);
+            let radiance_swapped = bsdf.f_mode(wi, wo, TransportMode::Radiance);
+            assert_close(importance, radiance_swapped, name);
+            if wo.z * wi.z < 0.0 && importance.max_element() > 0.0 {
+                transmitted += 1;
+                // Not symmetric in radiance mode: the test has teeth.
+                let radiance = bsdf.f_mode(wo, wi, TransportMode::Radiance);
+                assert!(
+                    (radiance - importance).abs().max_element() > 1e-3 * importance.max_element()
+                );
+            }
+        }
+    }
+    assert!(
+        transmitted > 1000,
+        "too few transmitted pairs: {transmitted}"
+    );
+}
+
+#[test]
+fn sample_mode_scales_only_transmission_in_importance_mode() {
+    let (_, bsdf) = transmitting_bsdfs().remove(0);
+    let wo = Vec3::new(0.3, -0.2, 0.9).normalize();
+    let mut sampler = Sampler::new(SamplerKind::Independent, 3);
+    let mut seen = [false; 2];
+    for i in 0..256 {
+        sampler.start_pixel_sample(0, 0, i);
+        let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
+        let (Some(r), Some(m)) = (
+            bsdf.sample_mode(wo, u1, u2, TransportMode::Radiance),
+            bsdf.sample_mode(wo, u1, u2, TransportMode::Importance),
+        ) else {
+            continue;
+        };
+        assert_eq!((r.wi, r.pdf), (m.wi, m.pdf));
+        let scale = if r.flags.is_transmission() {
+            1.5 * 1.5
+        } else {
+            1.0
+        };
+        assert_close(m.f, r.f * scale, "sampled f");
+        assert_close(
+            m.f,
+            bsdf.f_mode(wo, m.wi, TransportMode::Importance),
+            "f of the sample",
+        );
+        seen[r.flags.is_transmission() as usize] = true;
+    }
+    assert_eq!(seen, [true, true], "both lobes sampled");
+}
+
+/// The scattering kernel per unit projected solid angle of the *true*
+/// surface, as a path carrying `mode` applies it: f · |wi·ns| / |wi·ng|,
+/// times the shading-normal correction of the mode.
+fn kernel(bsdf: &Bsdf, frame: &Frame, ng: Vec3, wo: Vec3, wi: Vec3, mode: TransportMode) -> Vec3 {
+    let f = bsdf.f_mode(frame.to_local(wo), frame.to_local(wi), mode);
+    f * (wi.dot(frame.z).abs() / wi.dot(ng).abs())
+        * shading_normal_correction(mode, wo, wi, frame.z, ng)
+}
+
+#[test]
+fn shading_normals_keep_the_adjoint_relation() {
+    // A bent shading normal (a normal map's), 35° off the true normal.
+    let ng = Vec3::Z;
+    let frame = Frame::from_normal(Vec3::new(0.35f32.sin(), 0.0, 0.35f32.cos()).normalize());
+    let mut bsdfs = transmitting_bsdfs();
+    bsdfs.push((
+        "diffuse",
+        Bsdf::Diffuse {
+            albedo: Vec3::new(0.7, 0.5, 0.3),
+        },
+    ));
+    let mut asymmetric = 0;
+    for (name, bsdf) in bsdfs {
+        for (wo, wi) in direction_pairs(2000) {
+            if wo.dot(ng).abs() < 1e-3 || wi.dot(ng).abs() < 1e-3 {
+                continue;
+            }
+            let importance = kernel(&bsdf, &frame, ng, wo, wi, TransportMode::Importance);
+            let radiance_swapped = kernel(&bsdf, &frame, ng, wi, wo, TransportMode::Radiance);
+            assert_close(importance, radiance_swapped, name);
+            let radiance = kernel(&bsdf, &frame, ng, wo, wi, TransportMode::Radiance);
+            if (radiance - importance).abs().max_element() > 1e-2 * importance.max_element() {
+                asymmetric += 1;
+            }
+        }
+    }
+    // Without the correction the kernel is not symmetric: the test has teeth.
+    assert!(asymmetric > 1000, "only {asymmetric} asymmetric pairs");
+}
+
+#[test]
+fn radiance_mode_is_the_plain_bsdf() {
+    let (_, bsdf) = transmitting_bsdfs().remove(0);
+    for (wo, wi) in direction_pairs(200) {
+        assert_eq!(bsdf.f_mode(wo, wi, TransportMode::Radiance), bsdf.f(wo, wi));
+    }
+    let n = Vec3::Z;
+    let (wo, wi) = (Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.0, 0.6, -0.8));
+    assert_eq!(
+        shading_normal_correction(TransportMode::Radiance, wo, wi, n, n),
+        1.0
+    );
+    assert!(
+        (shading_normal_correction(TransportMode::Importance, wo, wi, n, n) - 1.0).abs() < 1e-6
+    );
+    let _ = Vec2::ZERO;
+}
