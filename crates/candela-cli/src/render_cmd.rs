@@ -7,7 +7,10 @@ use crate::args::RenderArgs;
 use crate::progress::RenderBar;
 use crate::report::{print_stats, ReportContext};
 use anyhow::{Context, Result};
-use candela_render::film::{write_film, OutputFormat, OutputOptions};
+use candela_image::denoise::Oidn;
+use candela_render::film::{
+    denoise_film, denoised_path, write_denoised, write_film, OutputFormat, OutputOptions,
+};
 use candela_render::integrator::Estimator;
 use candela_render::render::{render_with, Cancel, Progress, RenderControl, StopReason};
 use candela_render::scene::Scene;
@@ -58,6 +61,10 @@ pub fn explicit_settings(
     args.cs184.apply(&mut given);
     given.validate()?;
     Settings::from_json(&explicit)?;
+    if given.output.denoise {
+        // Before anything is rendered: a missing denoiser is bad input.
+        Oidn::load().map_err(|e| UsageError(format!("--denoise: {e}")))?;
+    }
     Ok(explicit)
 }
 
@@ -95,7 +102,14 @@ pub fn run(args: &RenderArgs, matches: &ArgMatches) -> Result<Outcome> {
         cost: true,
         rate_image: adaptive.then_some(max_samples),
     };
-    let written = write_film(&args.output, &output.film, &opts)?;
+    let mut written = write_film(&args.output, &output.film, &opts)?;
+    if settings.output.denoise {
+        let oidn = Oidn::load().map_err(|e| UsageError(format!("--denoise: {e}")))?;
+        let image = denoise_film(&output.film, oidn)?;
+        let path = denoised_path(&args.output);
+        write_denoised(&path, &image, &opts.tone)?;
+        written.push(path);
+    }
     if !args.quiet {
         let cx = ReportContext {
             load_time,

@@ -4,6 +4,7 @@
 //! of per-pixel sums, which merge by addition (`merge`) and travel as bytes,
 //! which is all `candela.distributed` needs to spread a render over Dask.
 
+mod denoise;
 mod film;
 mod scene;
 mod settings;
@@ -104,6 +105,8 @@ fn _candela(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyFilm>()?;
     m.add("LoadError", m.py().get_type::<LoadError>())?;
+    m.add("DenoiseError", m.py().get_type::<denoise::DenoiseError>())?;
+    m.add_function(wrap_pyfunction!(denoise::denoiser_library, m)?)?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(demo_scene, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;

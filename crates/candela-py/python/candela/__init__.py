@@ -14,10 +14,12 @@ machines -- merge by addition: see ``candela.merge`` and
 """
 
 from candela._candela import (
+    DenoiseError,
     Film,
     LoadError,
     Scene,
     demo_scene,
+    denoiser_library,
     load,
     merge,
     read_image,
@@ -28,6 +30,6 @@ from candela._candela import (
 # plain ``import candela`` (Dask itself is imported only when used).
 from candela import distributed  # noqa: E402
 
-__all__ = ["Film", "LoadError", "Scene", "demo_scene", "load", "merge", "read_image", "settings_help",
-           "distributed"]
+__all__ = ["DenoiseError", "Film", "LoadError", "Scene", "demo_scene", "denoiser_library", "load", "merge",
+           "read_image", "settings_help", "distributed"]
 __version__ = "0.1.0"

@@ -11,11 +11,13 @@
 //! `SampleRecord`). The image is resolved only at the end.
 
 pub mod adaptive;
+pub mod denoised;
 pub mod output;
 mod rect;
 mod sums;
 
 pub use adaptive::Adaptive;
+pub use denoised::{denoise_film, denoised_path, write_denoised};
 pub use output::{write_film, OutputError, OutputFormat, OutputOptions};
 pub use rect::PixelRect;
 pub use sums::{luminance, CostMeasure, PixelSums, SampleValue};

@@ -59,10 +59,15 @@ def main(argv=None) -> int:
         refused = [f"{k} ({dist.UNSUPPORTED[k]})" for k in dist.UNSUPPORTED if settings.get(k) not in (None, False)]
         if refused:
             raise dist.SettingsRefused(f"--dask does not support {', '.join(refused)} yet")
+        if settings.get("denoise"):
+            candela.denoiser_library()  # the client denoises: refuse now if it cannot
+    except candela.DenoiseError as e:
+        print(f"candela: error: --denoise: {e}", file=sys.stderr)
+        return REFUSED
     except (ValueError, candela.LoadError) as e:
         print(f"candela: error: {e}", file=sys.stderr)
         return REFUSED
-    output = {k: settings[k] for k in ("exposure", "tone") if k in settings}
+    output = {k: settings[k] for k in ("exposure", "tone", "denoise") if k in settings}
     client, cluster = _client(a.dask)
     try:
         done = [0]
