@@ -220,7 +220,8 @@ impl PyFilm {
             .transpose()?;
         let film = &self.inner.film;
         let denoised = py.detach(|| oidn.map(|oidn| denoise_film(film, oidn)).transpose());
-        let denoised = denoised.map_err(|e| crate::denoise::DenoiseError::new_err(e.to_string()))?;
+        let denoised =
+            denoised.map_err(|e| crate::denoise::DenoiseError::new_err(e.to_string()))?;
         py.detach(|| {
             write_film(&path, film, &opts)?;
             match &denoised {
@@ -229,9 +230,9 @@ impl PyFilm {
             }
         })
         .map_err(|e| match e {
-                OutputError::Format(_) => PyValueError::new_err(e.to_string()),
-                OutputError::Write(..) => PyOSError::new_err(e.to_string()),
-            })
+            OutputError::Format(_) => PyValueError::new_err(e.to_string()),
+            OutputError::Write(..) => PyOSError::new_err(e.to_string()),
+        })
     }
 
     /// Adds `other`'s sums (a part of the same image lying inside this film)

@@ -45,6 +45,21 @@ fn load(py: Python<'_>, path: PathBuf, strict: bool) -> PyResult<PyScene> {
     Ok(PyScene::new(loaded))
 }
 
+/// Every file the scene at `path` needs, the scene file first: the files
+/// its loader reads (meshes, material libraries, buffers) and the images
+/// it names (textures, environment map). What `candela.distributed` ships
+/// to workers that cannot read the scene's folder.
+#[pyfunction]
+#[pyo3(signature = (path, *, strict=false))]
+fn scene_files(py: Python<'_>, path: PathBuf, strict: bool) -> PyResult<Vec<PathBuf>> {
+    let opts = LoadOptions {
+        strict,
+        ..Default::default()
+    };
+    py.detach(|| candela_scene::referenced_files(&path, &opts))
+        .map_err(|e| LoadError::new_err(e.to_string()))
+}
+
 /// The built-in demo scene (a Cornell box with two spheres), as the CLI
 /// renders with no scene file.
 #[pyfunction]
@@ -109,6 +124,7 @@ fn _candela(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(denoise::denoiser_library, m)?)?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(demo_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_files, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add_function(wrap_pyfunction!(read_image, m)?)?;
     m.add_function(wrap_pyfunction!(settings_help, m)?)?;

@@ -69,7 +69,9 @@ mod tests {
     use super::*;
 
     fn repo(rel: &str) -> PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(rel)
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join(rel)
     }
 
     fn names(files: &[PathBuf]) -> Vec<String> {
@@ -100,7 +102,11 @@ mod tests {
         let files = referenced_files(&dir.join("scene.obj"), &LoadOptions::default()).unwrap();
         assert_eq!(
             files,
-            [dir.join("scene.obj"), dir.join("m.mtl"), dir.join("tex/t.png")]
+            [
+                dir.join("scene.obj"),
+                dir.join("m.mtl"),
+                dir.join("tex/t.png")
+            ]
         );
     }
 

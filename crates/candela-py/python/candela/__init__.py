@@ -23,6 +23,7 @@ from candela._candela import (
     load,
     merge,
     read_image,
+    scene_files,
     settings_help,
 )
 
@@ -31,5 +32,5 @@ from candela._candela import (
 from candela import distributed  # noqa: E402
 
 __all__ = ["DenoiseError", "Film", "LoadError", "Scene", "demo_scene", "denoiser_library", "load", "merge",
-           "read_image", "settings_help", "distributed"]
+           "read_image", "scene_files", "settings_help", "distributed"]
 __version__ = "0.1.0"

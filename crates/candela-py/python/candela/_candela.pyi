@@ -116,6 +116,9 @@ class Scene:
 def load(path: _Path, *, strict: bool = False) -> Scene:
     """Loads a COLLADA (.dae) scene."""
 
+def scene_files(path: _Path, *, strict: bool = False) -> list[str]:
+    """Every file the scene needs (scene file first): meshes, material
+    libraries, buffers, textures, environment map."""
 def demo_scene() -> Scene:
     """The built-in demo scene."""
 

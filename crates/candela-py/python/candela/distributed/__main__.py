@@ -26,7 +26,7 @@ REFUSED = 2
 def _args(argv):
     p = argparse.ArgumentParser(prog="python -m candela.distributed", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("scene", help="scene file, readable by every worker")
+    p.add_argument("scene", help="scene file (shipped to the workers with every file it references)")
     p.add_argument("--dask", required=True, metavar="ADDRESS", help="tcp://host:port or local:N")
     p.add_argument("--settings", default="{}", metavar="JSON", help="render settings as a JSON object")
     p.add_argument("-f", "--file", default="candela.png", help="output .png or .exr")
@@ -34,6 +34,8 @@ def _args(argv):
     p.add_argument("--passes", type=int, default=1, help="sample ranges per pixel")
     p.add_argument("--retries", type=int, default=3, help="reruns of a unit that raised")
     p.add_argument("--strict", action="store_true", help="load warnings are errors")
+    p.add_argument("--shared-path", action="store_true",
+                   help="send workers the scene's path instead of its files (a cluster with a shared disk)")
     p.add_argument("-q", "--quiet", action="store_true")
     return p.parse_args(argv)
 
@@ -80,7 +82,7 @@ def main(argv=None) -> int:
 
         start = time.perf_counter()
         film = dist.render(a.scene, client, tiles=tuple(a.tiles), passes=a.passes, retries=a.retries,
-                           strict=a.strict, on_unit=progress, **settings)
+                           strict=a.strict, ship_scene=not a.shared_path, on_unit=progress, **settings)
         film.save(a.file, aovs=True, **output)
         if not a.quiet:
             s = film.stats
