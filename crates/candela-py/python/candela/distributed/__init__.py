@@ -170,7 +170,10 @@ def render(
     if isinstance(scene, SceneBundle) or ship_scene:
         bundle = scene if isinstance(scene, SceneBundle) else bundle_scene(scene, strict, settings.get("env_map"))
         path = scene_path(bundle)  # this machine's copy, for the settings
-        source: Any = client.scatter(bundle)
+        # A copy on every worker, so that one dying loses no scene; a fresh
+        # key per render (hash=False), since a content key may still be
+        # being released from a previous render of the same scene.
+        source: Any = client.scatter(bundle, broadcast=True, hash=False)
     else:
         path = source = os.path.abspath(os.fspath(scene))
     # Every setting resolved here, once (defaults < the scene's suggestions
