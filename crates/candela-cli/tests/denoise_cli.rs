@@ -13,6 +13,8 @@ fn candela(env: &[(&str, &str)], args: &[&str]) -> std::process::Output {
     cmd.output().expect("candela runs")
 }
 
+const DEMO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/demo.dae");
+
 #[test]
 fn without_the_library_denoise_is_refused_before_rendering() {
     let dir = TempDir::new("denoise-missing");
@@ -20,7 +22,9 @@ fn without_the_library_denoise_is_refused_before_rendering() {
     let missing = dir.join("no-such-lib.so");
     let run = candela(
         &[("CANDELA_OIDN_LIB", missing.to_str().unwrap())],
-        &["--denoise", "-s", "1", "-f", out.to_str().unwrap()],
+        // `--denoise` takes no value unless written `--denoise=BOOL`: the
+        // scene after it stays the scene.
+        &["-s", "1", "-f", out.to_str().unwrap(), "--denoise", DEMO],
     );
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(2), "{stderr}");
@@ -54,7 +58,7 @@ fn denoise_writes_its_own_file_and_keeps_the_raw_image() {
         let out = dir.join(format!("out.{ext}"));
         let run = candela(
             &[("CANDELA_OIDN_LIB", library.to_str().unwrap())],
-            &["--denoise", "-s", "4", "-f", out.to_str().unwrap()],
+            &["--denoise=true", "-s", "4", "-f", out.to_str().unwrap()],
         );
         assert!(
             run.status.success(),

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 
@@ -84,11 +85,13 @@ def main(argv=None) -> int:
         film = dist.render(a.scene, client, tiles=tuple(a.tiles), passes=a.passes, retries=a.retries,
                            strict=a.strict, ship_scene=not a.shared_path, on_unit=progress, **settings)
         film.save(a.file, aovs=True, **output)
+        stem, ext = os.path.splitext(a.file)
+        denoised = f" and {stem}.denoised{ext}" if output.get("denoise") else ""
         if not a.quiet:
             s = film.stats
             print(f"\ncandela: {s['rays']} rays in {time.perf_counter() - start:.3f} s "
                   f"on {len(client.scheduler_info()['workers'])} workers: {s['mrays_per_s']:.2f} Mrays/s; "
-                  f"wrote {a.file}", file=sys.stderr)
+                  f"wrote {a.file}{denoised}", file=sys.stderr)
     finally:
         client.close()
         if cluster is not None:
