@@ -4,12 +4,24 @@
 # Needs python3 (3.9+) with pip, and cargo. Installs the Python test
 # dependencies, lints the crate (its own workspace: see its Cargo.toml), builds
 # and installs the wheel, builds the CLI for the CLI-equality test, and runs
-# pytest (about 10 s of tests after the builds).
+# pytest (about 10 s of tests after the builds). The denoising tests, Rust and
+# Python, must find Open Image Denoise here (CANDELA_REQUIRE_OIDN=1).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root=$PWD
 
 python3 -m pip install --quiet -r crates/candela-py/requirements-dev.txt
+
+# Open Image Denoise came with pyoidn (requirements-dev.txt): from here on a
+# denoising test that cannot load it fails instead of skipping. Its Rust
+# tests (built by `cargo test --workspace`) run again with the library.
+# The Rust tests are given the library's folder; pytest finds it by itself
+# (through the interpreter's pyoidn, as users' code does).
+export CANDELA_REQUIRE_OIDN=1
+oidn_lib="$(python3 -c 'import importlib.util as u, os; print(os.path.join(os.path.dirname(u.find_spec("pyoidn").origin), "oidn", "lib"))')"
+CANDELA_OIDN_LIB="$oidn_lib" cargo test -p candela-image --lib denoise
+CANDELA_OIDN_LIB="$oidn_lib" cargo test -p candela-render --test denoise
+CANDELA_OIDN_LIB="$oidn_lib" cargo test -p candela-cli --test denoise_cli
 
 cargo fmt --manifest-path crates/candela-py/Cargo.toml -p candela-py -- --check
 cargo clippy --manifest-path crates/candela-py/Cargo.toml --all-targets -- -D warnings

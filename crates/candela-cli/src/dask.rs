@@ -3,7 +3,8 @@
 //! (`python3 -m candela.distributed`, installed with
 //! `pip install ./crates/candela-py`). Dask does the scheduling, retries and
 //! data movement; this module only passes the settings the user gave, in
-//! their one wire format (the settings' JSON). The distributed front
+//! their one wire format (the settings' JSON); the scene travels to the
+//! workers as its files' bytes, so they need no shared disk. The distributed front
 //! refuses by name whatever it cannot honour (exit code 2), so nothing a
 //! user asks for is silently dropped.
 
@@ -21,10 +22,9 @@ const REFUSED: i32 = 2;
 /// `local:N`).
 pub fn run(args: &RenderArgs, matches: &ArgMatches, address: &str) -> Result<Outcome> {
     let settings = explicit_settings(args, matches)?;
-    let scene = args
-        .scene
-        .as_ref()
-        .ok_or_else(|| UsageError("--dask needs a scene file that every worker can read".into()))?;
+    let scene = args.scene.as_ref().ok_or_else(|| {
+        UsageError("--dask needs a scene file (it is shipped to the workers)".into())
+    })?;
     let mut cmd = python();
     cmd.args(["-m", "candela.distributed"])
         .arg(scene)

@@ -9,8 +9,11 @@ use crate::args::RenderArgs;
 use crate::progress::RenderBar;
 use crate::report::{print_stats, ReportContext};
 use anyhow::{Context, Result};
+use candela_image::denoise::Oidn;
 use candela_render::checkpoint::CheckpointWriter;
-use candela_render::film::{write_film, OutputFormat, OutputOptions};
+use candela_render::film::{
+    denoise_film, denoised_path, write_denoised, write_film, OutputFormat, OutputOptions,
+};
 use candela_render::integrator::Estimator;
 use candela_render::render::{
     render_from, Cancel, Continuation, PassEnd, Progress, RenderControl, StopReason,
@@ -63,6 +66,10 @@ pub fn explicit_settings(
     args.cs184.apply(&mut given);
     given.validate()?;
     Settings::from_json(&explicit)?;
+    if given.output.denoise {
+        // Before anything is rendered: a missing denoiser is bad input.
+        Oidn::load().map_err(|e| UsageError(format!("--denoise: {e}")))?;
+    }
     Ok(explicit)
 }
 
@@ -162,7 +169,14 @@ pub fn render_job(
         info: output.info(&render, job.scene.as_deref()),
         rate_image: adaptive.then_some(max_samples),
     };
-    let written = write_film(&job.output, &output.film, &opts)?;
+    let mut written = write_film(&job.output, &output.film, &opts)?;
+    if settings.output.denoise {
+        let oidn = Oidn::load().map_err(|e| UsageError(format!("--denoise: {e}")))?;
+        let image = denoise_film(&output.film, oidn)?;
+        let path = denoised_path(&job.output);
+        write_denoised(&path, &image, &opts.tone)?;
+        written.push(path);
+    }
     if let Some(w) = &writer {
         if let (Some(e), false) = (w.take_failure(), job.quiet) {
             eprintln!("candela: warning: {e}");

@@ -3,13 +3,15 @@
 //! The renderer resolves its film into an [`RgbImage`] of linear radiance;
 //! this crate turns it into files ([`write_png`] through a [`ToneMap`],
 //! [`write_exr`] with denoiser layers), reads textures back ([`read_png`],
-//! [`read_exr`]) and measures error ([`metrics`]). Every file is written
+//! [`read_exr`]), measures error ([`metrics`]) and denoises with Intel Open
+//! Image Denoise when it is installed ([`denoise`]). Every file is written
 //! through [`atomic_write`], so an output path never holds a partial file.
 #![warn(missing_docs)]
 
 mod atomic;
 mod buffer;
 mod colormap;
+pub mod denoise;
 mod error;
 mod exr_io;
 mod heat;

@@ -5,7 +5,9 @@ use crate::stats::StatsRecord;
 use crate::wire::{self, PlacedFilm};
 use candela_image::RenderInfo;
 use candela_render::film::OutputError;
-use candela_render::film::{write_film, Film, OutputOptions, PixelSums};
+use candela_render::film::{
+    denoise_film, denoised_path, write_denoised, write_film, Film, OutputOptions, PixelSums,
+};
 use candela_render::settings::Settings;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
@@ -137,6 +139,20 @@ impl PyFilm {
         reshape3(py, v, h, w)
     }
 
+    /// The image denoised by Intel Open Image Denoise, guided by the film's
+    /// albedo and normal (prefiltered), float32, shape (H, W, 3). Needs the
+    /// library (`pip install pyoidn`); raises `candela.DenoiseError` saying
+    /// so where it is missing.
+    fn denoise<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        let oidn = crate::denoise::oidn(py)?;
+        let (w, h) = self.size();
+        let image = py
+            .detach(|| denoise_film(&self.inner.film, oidn))
+            .map_err(|e| crate::denoise::DenoiseError::new_err(e.to_string()))?;
+        let v = image.into_pixels().into_iter().flatten().collect();
+        reshape3(py, v, h, w)
+    }
+
     /// Samples taken per pixel, uint32, shape (H, W).
     fn sample_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u32>>> {
         let (w, h) = self.size();
@@ -175,8 +191,9 @@ impl PyFilm {
     /// and the `samples` layer it needs, the render time in the header; the
     /// albedo and normal layers denoisers read, the depth and the cost
     /// layers when `aovs`). The output
-    /// settings (`exposure`, `tone`) may be given as keywords, as to
-    /// `render`.
+    /// settings (`exposure`, `tone`, `denoise`) may be given as keywords, as
+    /// to `render`; `denoise=True` also writes the denoised image to
+    /// `<stem>.denoised.<ext>` (see `denoise`).
     #[pyo3(signature = (path, *, samples=false, aovs=false, **settings))]
     fn save(
         &self,
@@ -203,12 +220,27 @@ impl PyFilm {
             },
             rate_image: None,
         };
-        py.detach(|| write_film(&path, &self.inner.film, &opts))
-            .map(|_| ())
-            .map_err(|e| match e {
-                OutputError::Format(_) => PyValueError::new_err(e.to_string()),
-                OutputError::Write(..) => PyOSError::new_err(e.to_string()),
-            })
+        // Found before anything is written, so a missing library leaves no
+        // half of the output.
+        let oidn = output
+            .denoise
+            .then(|| crate::denoise::oidn(py))
+            .transpose()?;
+        let film = &self.inner.film;
+        let denoised = py.detach(|| oidn.map(|oidn| denoise_film(film, oidn)).transpose());
+        let denoised =
+            denoised.map_err(|e| crate::denoise::DenoiseError::new_err(e.to_string()))?;
+        py.detach(|| {
+            write_film(&path, film, &opts)?;
+            match &denoised {
+                Some(image) => write_denoised(&denoised_path(&path), image, &opts.tone),
+                None => Ok(()),
+            }
+        })
+        .map_err(|e| match e {
+            OutputError::Format(_) => PyValueError::new_err(e.to_string()),
+            OutputError::Write(..) => PyOSError::new_err(e.to_string()),
+        })
     }
 
     /// Adds `other`'s sums (a part of the same image lying inside this film)

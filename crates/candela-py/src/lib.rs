@@ -6,6 +6,7 @@
 
 mod checkpoint;
 mod compare;
+mod denoise;
 mod film;
 mod scene;
 mod settings;
@@ -44,6 +45,21 @@ fn load(py: Python<'_>, path: PathBuf, strict: bool) -> PyResult<PyScene> {
         .detach(|| candela_scene::load(&path, &opts))
         .map_err(|e| LoadError::new_err(e.to_string()))?;
     Ok(PyScene::new(loaded))
+}
+
+/// Every file the scene at `path` needs, the scene file first: the files
+/// its loader reads (meshes, material libraries, buffers) and the images
+/// it names (textures, environment map). What `candela.distributed` ships
+/// to workers that cannot read the scene's folder.
+#[pyfunction]
+#[pyo3(signature = (path, *, strict=false))]
+fn scene_files(py: Python<'_>, path: PathBuf, strict: bool) -> PyResult<Vec<PathBuf>> {
+    let opts = LoadOptions {
+        strict,
+        ..Default::default()
+    };
+    py.detach(|| candela_scene::referenced_files(&path, &opts))
+        .map_err(|e| LoadError::new_err(e.to_string()))
 }
 
 /// The built-in demo scene (a Cornell box with two spheres), as the CLI
@@ -106,8 +122,11 @@ fn _candela(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyFilm>()?;
     m.add("LoadError", m.py().get_type::<LoadError>())?;
+    m.add("DenoiseError", m.py().get_type::<denoise::DenoiseError>())?;
+    m.add_function(wrap_pyfunction!(denoise::denoiser_library, m)?)?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(demo_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_files, m)?)?;
     m.add_function(wrap_pyfunction!(merge, m)?)?;
     m.add_function(wrap_pyfunction!(read_image, m)?)?;
     m.add_function(wrap_pyfunction!(settings_help, m)?)?;

@@ -21,12 +21,14 @@ pub mod metals;
 mod mitsuba;
 mod obj;
 mod ply;
+mod referenced;
 mod report;
 mod text_file;
 
 pub use desc::*;
 pub use error::{ErrorKind, LoadError};
 pub use hints::RenderHints;
+pub use referenced::referenced_files;
 pub use report::{Report, Warning};
 
 use std::path::{Path, PathBuf};

@@ -22,6 +22,7 @@ pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, LoadError> {
             format!("{} bytes exceeds the limit of {MAX_FILE_BYTES}", meta.len()),
         ));
     }
+    crate::referenced::note_read(path);
     std::fs::read(path).map_err(io)
 }
 

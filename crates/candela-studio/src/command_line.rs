@@ -41,7 +41,7 @@ pub fn command_line(
                 // `--eye=-1,2,3`: a value starting with `-` must not look
                 // like a flag.
                 let value = plain(value);
-                if value.starts_with('-') {
+                if value.starts_with('-') || flag.require_equals {
                     words.push(format!("--{long}={value}"));
                 } else {
                     words.push(format!("--{long}"));
@@ -91,7 +91,7 @@ mod tests {
     fn changed_settings_become_flags() {
         let changes = json!({
             "spp": 4, "roulette": false, "eye": [1.5, -2, 3], "look_at": [-1, 0, 0],
-            "cell": [1, 2, 3, 4], "lighting": "hemisphere"
+            "cell": [1, 2, 3, 4], "lighting": "hemisphere", "denoise": true
         });
         let changes = changes.as_object().unwrap().clone();
         let settings = Settings::default().overlay(&changes).unwrap();
@@ -104,7 +104,7 @@ mod tests {
         assert_eq!(
             line,
             "candela --spp 4 --lighting hemisphere --roulette false --eye 1.5,-2.0,3.0 \
-             --look-at=-1.0,0.0,0.0 -p 1 2 3 4 'my scene.dae' -f out.png"
+             --look-at=-1.0,0.0,0.0 --denoise=true -p 1 2 3 4 'my scene.dae' -f out.png"
         );
     }
 }

@@ -132,3 +132,24 @@ pub fn cs184_scene(name: &str) -> PathBuf {
     assert!(path.is_file(), "missing CS184 scene {}", path.display());
     path
 }
+
+/// For tests that need something optional (a shared library a user may not
+/// have): `Ok(x)` is used; on `Err(why)` the test skips with a printed
+/// reason, unless the environment variable `require` is `1`, which CI sets
+/// where it installed the dependency, and then the test fails. So a plain
+/// `cargo test` is green on any machine, and CI cannot skip silently.
+pub fn optional_dependency<T, E: std::fmt::Display>(
+    found: Result<T, E>,
+    require: &str,
+) -> Option<T> {
+    match found {
+        Ok(x) => Some(x),
+        Err(why) if std::env::var(require).as_deref() == Ok("1") => {
+            panic!("{require}=1 but the dependency is unavailable: {why}")
+        }
+        Err(why) => {
+            eprintln!("skipped (set {require}=1 to make this a failure): {why}");
+            None
+        }
+    }
+}

@@ -14,14 +14,17 @@ machines -- merge by addition: see ``candela.merge`` and
 """
 
 from candela._candela import (
+    DenoiseError,
     Film,
     LoadError,
     Scene,
     demo_scene,
+    denoiser_library,
     load,
     merge,
     read_checkpoint,
     read_image,
+    scene_files,
     settings_help,
     write_checkpoint,
 )
@@ -32,6 +35,7 @@ from candela._compare import compare  # noqa: E402
 # plain ``import candela`` (Dask itself is imported only when used).
 from candela import distributed  # noqa: E402
 
-__all__ = ["Film", "LoadError", "Scene", "compare", "demo_scene", "load", "merge", "read_checkpoint",
-           "read_image", "settings_help", "write_checkpoint", "distributed"]
+__all__ = ["DenoiseError", "Film", "LoadError", "Scene", "compare", "demo_scene", "denoiser_library", "load",
+           "merge", "read_checkpoint", "read_image", "scene_files", "settings_help", "write_checkpoint",
+           "distributed"]
 __version__ = "0.1.0"

@@ -11,6 +11,10 @@ _Path = Union[str, PathLike[str]]
 class LoadError(ValueError):
     """A scene file could not be loaded; the message locates the problem."""
 
+class DenoiseError(RuntimeError):
+    """Open Image Denoise is missing or failed; the message says what is
+    missing and how to get it (``pip install pyoidn``)."""
+
 class Stats(TypedDict):
     """Render statistics; counters add up when films merge."""
 
@@ -67,6 +71,10 @@ class Film:
         """Records the elapsed time of a render whose parts ran concurrently."""
     def image(self) -> npt.NDArray[np.float32]:
         """Mean linear radiance, shape (H, W, 3)."""
+    def denoise(self) -> npt.NDArray[np.float32]:
+        """The image denoised by Open Image Denoise (guided by the film's
+        albedo and normal), shape (H, W, 3); raises ``DenoiseError``
+        without the library."""
     def sample_counts(self) -> npt.NDArray[np.uint32]:
         """Samples per pixel, shape (H, W)."""
     def arrays(self) -> FilmArrays:
@@ -74,7 +82,7 @@ class Film:
     def save(self, path: _Path, *, samples: bool = False, aovs: bool = False, **settings: Any) -> None:
         """Writes .png (tone-mapped sRGB with the ``exposure`` and ``tone``
         settings) or .exr (linear; optional samples, albedo and normal
-        layers)."""
+        layers); ``denoise=True`` also writes ``<stem>.denoised.<ext>``."""
     def add(self, other: Film) -> None:
         """Adds a part of the same image lying inside this film, in place."""
     def to_bytes(self) -> bytes:
@@ -111,6 +119,9 @@ class Scene:
 def load(path: _Path, *, strict: bool = False) -> Scene:
     """Loads a COLLADA (.dae) scene."""
 
+def scene_files(path: _Path, *, strict: bool = False) -> list[str]:
+    """Every file the scene needs (scene file first): meshes, material
+    libraries, buffers, textures, environment map."""
 def demo_scene() -> Scene:
     """The built-in demo scene."""
 
@@ -120,6 +131,9 @@ def merge(films: Sequence[Film]) -> Film:
 def read_image(path: _Path) -> npt.NDArray[np.float32]:
     """Reads a PNG (as linear RGB) or an EXR, shape (H, W, 3)."""
 
+def denoiser_library() -> str:
+    """The Open Image Denoise library ``Film.denoise`` uses; raises
+    ``DenoiseError`` without one."""
 def settings_help() -> Dict[str, str]:
     """The help of every render setting, by name (as ``candela --help``)."""
 

@@ -16,6 +16,7 @@
 //! ([`splat`]), and added to the camera samples' mean when resolving.
 
 pub mod adaptive;
+pub mod denoised;
 pub mod layers;
 pub mod output;
 mod rect;
@@ -24,6 +25,7 @@ mod sums;
 pub mod wire;
 
 pub use adaptive::Adaptive;
+pub use denoised::{denoise_film, denoised_path, write_denoised};
 pub use layers::FilmLayers;
 pub use output::{write_film, OutputError, OutputFormat, OutputOptions};
 pub use rect::PixelRect;

@@ -20,6 +20,9 @@ pub struct SettingFlag {
     pub help: String,
     /// The accepted values of a setting with a fixed set of them.
     pub choices: Vec<String>,
+    /// The value must be written `--flag=value` (a flag whose value is
+    /// optional, such as `--denoise`).
+    pub require_equals: bool,
 }
 
 /// Every setting's flag, in the order of `candela --help`, then the two
@@ -37,6 +40,7 @@ pub fn flags() -> Vec<SettingFlag> {
                 .iter()
                 .map(|v| v.get_name().to_string())
                 .collect(),
+            require_equals: a.is_require_equals_set(),
         })
         .collect();
     for (name, help) in [("cell", CELL_HELP), ("adaptive", ADAPTIVE_HELP)] {
@@ -45,6 +49,7 @@ pub fn flags() -> Vec<SettingFlag> {
             long: None,
             help: help.into(),
             choices: Vec::new(),
+            require_equals: false,
         });
     }
     flags

@@ -31,6 +31,17 @@ pub struct OutputSettings {
     /// PNG tone curve.
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = OutputSettings::default().tone))]
     pub tone: Tone,
+
+    /// Also write a denoised image beside the output (`out.denoised.png`),
+    /// filtered by Intel Open Image Denoise with the albedo and normal
+    /// layers as guides; the raw image is written as always. Needs the
+    /// library: `pip install pyoidn` (or CANDELA_OIDN_LIB=path).
+    /// `--denoise` alone is `--denoise=true`.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", num_args = 0..=1,
+        require_equals = true, default_missing_value = "true", action = clap::ArgAction::Set,
+        value_parser = clap::builder::BoolishValueParser::new(),
+        default_value_t = OutputSettings::default().denoise))]
+    pub denoise: bool,
 }
 
 impl OutputSettings {

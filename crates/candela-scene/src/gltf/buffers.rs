@@ -98,6 +98,7 @@ pub(super) fn read_uri(ctx: &Ctx, at: &str, uri: &str) -> Result<Vec<u8>, LoadEr
             ),
         ));
     }
+    crate::referenced::note_read(&path);
     std::fs::read(&path).map_err(io)
 }
 

@@ -24,6 +24,8 @@ mod meshes;
 mod nodes;
 mod textures;
 
+pub(crate) use textures::extracted_images_dir;
+
 use crate::desc::SourceLoc;
 use crate::error::{ErrorKind, LoadError};
 use crate::report::Collector;
@@ -81,6 +83,7 @@ pub(crate) fn load_file(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadE
             format!("{len} bytes exceeds the limit of {MAX_FILE_BYTES}"),
         ));
     }
+    crate::referenced::note_read(path);
     let bytes = std::fs::read(path).map_err(|e| whole(ErrorKind::Io, e.to_string()))?;
     load_bytes(&bytes, path, opts)
 }

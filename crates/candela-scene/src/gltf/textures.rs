@@ -69,7 +69,7 @@ fn cache_file(ctx: &Ctx, at: &str, bytes: &[u8], mime: Option<&str>) -> Result<P
         }
         None => "png",
     };
-    let dir = std::env::temp_dir().join("candela-gltf-images");
+    let dir = extracted_images_dir();
     let path = dir.join(format!("{:016x}-{}.{ext}", fnv1a(bytes), bytes.len()));
     let same = std::fs::metadata(&path).is_ok_and(|m| m.len() == bytes.len() as u64);
     if !same {
@@ -87,6 +87,12 @@ fn cache_file(ctx: &Ctx, at: &str, bytes: &[u8], mime: Option<&str>) -> Result<P
         std::fs::rename(&tmp, &path).map_err(io)?;
     }
     Ok(path)
+}
+
+/// Where images embedded in a glTF file are written for the renderer to
+/// read (shared by every load, named by content).
+pub(crate) fn extracted_images_dir() -> std::path::PathBuf {
+    std::env::temp_dir().join("candela-gltf-images")
 }
 
 /// 64-bit FNV-1a: names cache files by content.

@@ -9,9 +9,12 @@ order -- for each cell, its passes in order -- whatever order they arrive in,
 so the result is bit for bit the film of ``scene.render(passes=passes, ...)``
 on one machine (and of a plain ``scene.render(...)`` when ``passes=1``).
 
-Only the scene path, the settings and the returned sums travel: workers load
-the scene themselves (once per process), so the path must be readable on
-every worker.
+The scene travels as a bundle of its files (``candela.distributed.bundle``):
+scattered once through Dask and written out once per worker machine under
+its content hash, so workers need no shared disk and never read the
+client's paths. (``ship_scene=False`` sends only the path instead, for
+clusters that share one.) Besides it, only the settings and the returned
+sums travel; each worker process loads and builds the scene once.
 
 With the ``checkpoint`` setting the client saves the film as units come back
 (every ``checkpoint_every`` seconds, and at the end), in the CLI's checkpoint
@@ -29,9 +32,11 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import candela
+from candela.distributed.bundle import SceneBundle, bundle_scene, env_map_path, scene_path
 from candela.distributed.checkpoint import Checkpointer, passes_done, resume_args
 
-__all__ = ["SettingsRefused", "UNSUPPORTED", "WorkUnit", "plan", "render", "render_unit", "resume"]
+__all__ = ["SceneBundle", "SettingsRefused", "UNSUPPORTED", "WorkUnit", "bundle_scene", "plan", "render",
+           "render_unit", "resume"]
 
 #: Settings that decide which pixels and samples a unit renders; the planner
 #: owns them.
@@ -111,40 +116,53 @@ def _scene(path: str, strict: bool) -> "candela.Scene":
 
 
 def render_unit(
-    scene_path: str,
+    scene: Union[str, SceneBundle],
     strict: bool,
     settings: Dict[str, Any],
     cell: Tuple[int, int, int, int],
     sample_range: Tuple[int, int],
 ) -> "candela.Film":
-    """Renders one work unit on this process; what a Dask task runs."""
-    return _scene(scene_path, strict).render(cell=cell, sample_range=sample_range, **settings)
+    """Renders one work unit on this process; what a Dask task runs.
+    ``scene`` is a path this process can read, or a bundle (written out
+    into this machine's cache on first use)."""
+    if isinstance(scene, SceneBundle):
+        env = env_map_path(scene)
+        if env is not None:
+            settings = dict(settings, env_map=env)
+        scene = scene_path(scene)
+    return _scene(scene, strict).render(cell=cell, sample_range=sample_range, **settings)
 
 
-UnitFn = Callable[[str, bool, Dict[str, Any], Tuple[int, int, int, int], Tuple[int, int]], "candela.Film"]
+UnitFn = Callable[
+    [Union[str, SceneBundle], bool, Dict[str, Any], Tuple[int, int, int, int], Tuple[int, int]], "candela.Film"
+]
 
 
 def render(
-    scene_path: Union[str, "os.PathLike[str]"],
+    scene: Union[str, "os.PathLike[str]", SceneBundle],
     client: Any,
     *,
     tiles: Union[int, Tuple[int, int]] = 4,
     passes: int = 1,
     retries: int = 3,
     strict: bool = False,
+    ship_scene: bool = True,
     unit_fn: Optional[UnitFn] = None,
     on_unit: Optional[Callable[[WorkUnit, "candela.Film"], None]] = None,
     record: Optional[Dict[str, Any]] = None,
     **settings: Any,
 ) -> "candela.Film":
-    """Renders ``scene_path`` on the Dask ``client``'s cluster.
+    """Renders ``scene`` (a path, or a ``bundle_scene`` bundle) on the Dask
+    ``client``'s cluster. The scene's files are shipped to the workers
+    (see the module documentation) unless ``ship_scene=False``, which sends
+    the path and needs it readable on every worker.
 
     ``settings`` are those of ``Scene.render`` (``spp``, ``seed``, ``width``,
     ``height``, ``max_depth``, ...: ``candela.settings_help()``); ``threads``
     is per unit and defaults to 1, since Dask already runs one unit per
     worker thread. The settings travel to the workers as the settings' JSON
     (the one wire format of every front end). Returns the merged
-    film, equal bit for bit to ``candela.load(scene_path).render(passes=passes,
+    film, equal bit for bit to ``candela.load(scene).render(passes=passes,
     **settings)``. ``retries`` is how often Dask reruns a unit that raised;
     units lost with a dead worker are rerun by the scheduler in any case.
     ``unit_fn`` replaces ``render_unit`` (for tests that inject faults);
@@ -162,7 +180,15 @@ def render(
     if refused:
         raise SettingsRefused(f"the distributed render does not support {', '.join(refused)} yet")
     settings.setdefault("threads", 1)
-    path = os.path.abspath(os.fspath(scene_path))
+    if isinstance(scene, SceneBundle) or ship_scene:
+        bundle = scene if isinstance(scene, SceneBundle) else bundle_scene(scene, strict, settings.get("env_map"))
+        path = scene_path(bundle)  # this machine's copy, for the settings
+        # A copy on every worker, so that one dying loses no scene; a fresh
+        # key per render (hash=False), since a content key may still be
+        # being released from a previous render of the same scene.
+        source: Any = client.scatter(bundle, broadcast=True, hash=False)
+    else:
+        path = source = os.path.abspath(os.fspath(scene))
     # Every setting resolved here, once (defaults < the scene's suggestions
     # < the caller's), so that every unit renders the same settings.
     scene = _scene(path, strict)
@@ -186,7 +212,7 @@ def render(
     start = time.perf_counter()
     futures = [
         client.submit(
-            fn, path, strict, unit_settings, u.cell, u.sample_range,
+            fn, source, strict, unit_settings, u.cell, u.sample_range,
             key=f"candela-unit-{run}-{i}", retries=retries, pure=False,
         )
         for i, u in enumerate(units)

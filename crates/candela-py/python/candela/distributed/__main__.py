@@ -31,7 +31,7 @@ REFUSED = 2
 def _args(argv):
     p = argparse.ArgumentParser(prog="python -m candela.distributed", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("scene", nargs="?", help="scene file, readable by every worker")
+    p.add_argument("scene", nargs="?", help="scene file (shipped to the workers with every file it references)")
     p.add_argument("--resume", metavar="PATH", help="continue the render saved in this checkpoint")
     p.add_argument("--dask", required=True, metavar="ADDRESS", help="tcp://host:port or local:N")
     p.add_argument("--settings", default="{}", metavar="JSON", help="render settings as a JSON object")
@@ -40,6 +40,8 @@ def _args(argv):
     p.add_argument("--passes", type=int, default=1, help="sample ranges per pixel")
     p.add_argument("--retries", type=int, default=3, help="reruns of a unit that raised")
     p.add_argument("--strict", action="store_true", help="load warnings are errors")
+    p.add_argument("--shared-path", action="store_true",
+                   help="send workers the scene's path instead of its files (a cluster with a shared disk)")
     p.add_argument("-q", "--quiet", action="store_true")
     return p.parse_args(argv)
 
@@ -74,10 +76,15 @@ def main(argv=None) -> int:
         refused = [f"{k} ({dist.UNSUPPORTED[k]})" for k in dist.UNSUPPORTED if settings.get(k) not in (None, False)]
         if refused:
             raise dist.SettingsRefused(f"--dask does not support {', '.join(refused)} yet")
+        if settings.get("denoise"):
+            candela.denoiser_library()  # the client denoises: refuse now if it cannot
+    except candela.DenoiseError as e:
+        print(f"candela: error: --denoise: {e}", file=sys.stderr)
+        return REFUSED
     except (ValueError, candela.LoadError) as e:
         print(f"candela: error: {e}", file=sys.stderr)
         return REFUSED
-    output = {k: settings[k] for k in ("exposure", "tone") if k in settings}
+    output = {k: settings[k] for k in ("exposure", "tone", "denoise") if k in settings}
     client, cluster = _client(a.dask)
     try:
         done = [0]
@@ -92,16 +99,19 @@ def main(argv=None) -> int:
         record = {"output": os.path.abspath(a.file), "address": a.dask}
         try:
             film = dist.render(a.scene, client, tiles=tuple(a.tiles), passes=a.passes, retries=a.retries,
-                               strict=a.strict, on_unit=progress, record=record, **settings)
+                               strict=a.strict, ship_scene=not a.shared_path, on_unit=progress, record=record,
+                               **settings)
         except ValueError as e:  # a checkpoint of another render
             print(f"candela: error: {e}", file=sys.stderr)
             return REFUSED
         film.save(a.file, aovs=True, **output)
+        stem, ext = os.path.splitext(a.file)
+        denoised = f" and {stem}.denoised{ext}" if output.get("denoise") else ""
         if not a.quiet:
             s = film.stats
             print(f"\ncandela: {s['rays']} rays in {time.perf_counter() - start:.3f} s "
                   f"on {len(client.scheduler_info()['workers'])} workers: {s['mrays_per_s']:.2f} Mrays/s; "
-                  f"wrote {a.file}", file=sys.stderr)
+                  f"wrote {a.file}{denoised}", file=sys.stderr)
     finally:
         client.close()
         if cluster is not None:
