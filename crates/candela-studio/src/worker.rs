@@ -22,10 +22,11 @@
 use crate::command_line::command_line;
 use crate::protocol::{frame_message, FrameHeader, Layer, Reply, SaveFormat};
 use crate::scene_pool::{scene_for, BuildKey, ScenePool};
+use candela_image::denoise::Oidn;
 use candela_image::{
     finite_percentile, heat_image, quantize_u8, rate_image, RgbImage, ToneCurve, ToneMap,
 };
-use candela_render::film::{write_film, Film, OutputOptions};
+use candela_render::film::{denoise_film, write_film, Film, OutputOptions};
 use candela_render::integrator::inspect::trace_paths;
 use candela_render::render::{render_with, Cancel, RenderControl, RenderSettings, StopReason};
 use candela_render::scene::Scene;
@@ -228,6 +229,11 @@ impl Worker {
         changes_all.extend(changes.iter().map(|(k, v)| (k.clone(), v.clone())));
         let settings = Settings::resolve(&self.source.loaded.hints, &changes_all)
             .map_err(|e| e.to_string())?;
+        if settings.output.denoise {
+            // As the CLI: a denoiser that cannot be loaded is refused before
+            // anything renders, never silently skipped.
+            Oidn::load().map_err(|e| format!("--denoise: {e}"))?;
+        }
         let path = self.source.path.as_deref();
         let command = command_line(path, &settings, &changes_all, "candela.png");
         let base = settings.render_settings();
@@ -438,6 +444,24 @@ pub fn refinement_ranges(base: &RenderSettings) -> Vec<Range<u32>> {
     ranges
 }
 
+/// The beauty image of a frame: denoised (Open Image Denoise, guided by the
+/// albedo and normal layers) on the final frame when the `denoise` setting
+/// is on, the raw mean otherwise and during refinement (denoising every
+/// pass would slow the refinement down for images about to be replaced).
+/// The render refused `denoise` up front if the library cannot be loaded;
+/// should denoising itself fail, the raw image is shown.
+fn beauty(film: &Film, settings: &Settings, header: &FrameHeader) -> RgbImage {
+    if settings.output.denoise && header.done {
+        if let Ok(image) = Oidn::load()
+            .map_err(|e| e.to_string())
+            .and_then(|oidn| denoise_film(film, oidn).map_err(|e| e.to_string()))
+        {
+            return image;
+        }
+    }
+    film.resolve()
+}
+
 /// The frame message of `layer` of `film`.
 pub fn encode(film: &Film, settings: &Settings, header: &FrameHeader) -> Outgoing {
     let (w, h) = (film.width, film.height);
@@ -453,7 +477,10 @@ pub fn encode(film: &Film, settings: &Settings, header: &FrameHeader) -> Outgoin
         curve: ToneCurve::Srgb,
     };
     let rgb = match header.layer {
-        Layer::Beauty => settings.output.tone_map().to_rgb8(&film.resolve()),
+        Layer::Beauty => settings
+            .output
+            .tone_map()
+            .to_rgb8(&beauty(film, settings, header)),
         Layer::StdError => settings.output.tone_map().to_rgb8(&film.std_error()),
         Layer::Depth => {
             let depth = film.depth();
