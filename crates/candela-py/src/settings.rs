@@ -96,6 +96,14 @@ pub fn request(hints: &RenderHints, mut kwargs: Map<String, Value>) -> PyResult<
     let sample_range = kwargs.remove("sample_range");
     let passes = kwargs.remove("passes");
     let settings = Settings::resolve(hints, &kwargs).map_err(value_error)?;
+    if settings.integrator.bounce_layers.is_some() || settings.integrator.technique_layers {
+        // Refused, not dropped: the Python film and its wire format carry
+        // the film's fixed sums only.
+        return Err(PyValueError::new_err(
+            "bounce_layers / technique_layers: Python films do not carry extra layers yet; \
+             render them with the candela command (they are EXR layers)",
+        ));
+    }
     let spp = settings.sampling.spp();
     let samples = match sample_range {
         None | Some(Value::Null) => 0..spp,
