@@ -175,7 +175,7 @@ fn impossible_flags_are_usage_errors() {
         &["-r", "100000", "100000", "-s", "1"],
         &["--exposure", "nan"],
         &["-d", "0", "-b", "0.1"],
-        &["--integrator", "bdpt"],
+        &["--integrator", "photons"],
         // A bounce past the depth, or with a view that picks its own.
         &["-m", "3", "--bounce", "4"],
         &["--bounce", "1", "--direct-only"],
