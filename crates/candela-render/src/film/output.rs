@@ -114,7 +114,12 @@ pub fn write_film(
                     extra.push((name.to_string(), LayerData::Gray(film.cost(measure))));
                 }
             }
-            if opts.variance {
+            // The variance of a pixel's mean is known from its camera
+            // samples' sums; light-subpath splats are summed without their
+            // squares, so a film with splats (light tracing, BDPT) gets no
+            // variance layer rather than one that understates its noise
+            // (`candela compare` then estimates it from each block's spread).
+            if opts.variance && film.splats.is_empty() {
                 extra.push((VARIANCE_LAYER.to_string(), LayerData::Rgb(film.variance())));
             }
             let counts = film.pixels.iter().map(|p| p.count as f64);
