@@ -59,6 +59,9 @@ pub enum Method {
     /// Bidirectional path tracing (`--integrator bdpt`), every strategy
     /// weighted by the power heuristic.
     Bdpt,
+    /// Light tracing (`--integrator light`): particles from the lights,
+    /// each vertex connected to the camera.
+    LightTracer,
     // ADD ESTIMATORS HERE. Light tracing and BDPT land as variants of
     // `settings::Estimator`; give each a variant here, an arm in
     // `Method::integrator` and `Method::spp_factor`, and a place in
@@ -71,11 +74,12 @@ pub enum Method {
 
 impl Method {
     /// Every estimator the suite runs.
-    pub const ALL: [Method; 4] = [
+    pub const ALL: [Method; 5] = [
         Method::Hemisphere,
         Method::LightSampling,
         Method::Mis,
         Method::Bdpt,
+        Method::LightTracer,
     ];
 
     /// Its integrator settings for light of up to `max_depth` bounces
@@ -85,9 +89,13 @@ impl Method {
             Method::Hemisphere => LightingMode::Hemisphere,
             Method::LightSampling => LightingMode::Light,
             Method::Mis => LightingMode::Mis,
-            Method::Bdpt => {
+            Method::Bdpt | Method::LightTracer => {
                 return IntegratorSettings {
-                    estimator: Estimator::Bdpt,
+                    estimator: if self == Method::Bdpt {
+                        Estimator::Bdpt
+                    } else {
+                        Estimator::Light
+                    },
                     ..IntegratorSettings::path(max_depth, LightingMode::Mis)
                 }
             }
@@ -101,6 +109,9 @@ impl Method {
         match self {
             Method::Hemisphere => 4,
             Method::LightSampling | Method::Mis | Method::Bdpt => 1,
+            // One light path per camera sample spreads its light over the
+            // whole film: noisier per pixel than a camera path.
+            Method::LightTracer => 4,
         }
     }
 }
