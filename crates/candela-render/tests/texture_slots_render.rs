@@ -30,27 +30,11 @@ use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{
     BsdfDesc, ColorSpace, InstanceDesc, MaterialDesc, MeshDesc, SceneDesc, TextureRef,
 };
-use glam::{Vec2, Vec3};
-use std::path::Path;
+use glam::Vec3;
 use std::sync::Arc;
 
 const SIZE: u32 = 32;
 const BATCHES: u64 = 16;
-
-/// A quad `corner + s·u + t·v`, uv = (s, t), facing `u × v`.
-fn quad(corner: Vec3, u: Vec3, v: Vec3, material: usize) -> MeshDesc {
-    MeshDesc {
-        name: format!("quad {material}"),
-        positions: vec![corner, corner + u, corner + u + v, corner + v],
-        triangles: vec![[0, 1, 2], [0, 2, 3]],
-        normals: vec![u.cross(v).normalize()],
-        normal_indices: vec![[0; 3]; 2],
-        uvs: vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y],
-        uv_indices: vec![[0, 1, 2], [0, 2, 3]],
-        material,
-        ..Default::default()
-    }
-}
 
 /// A scene of `meshes` and `materials` seen by the camera at the origin
 /// looking down −Z (60°).
@@ -70,7 +54,7 @@ fn scene_of(meshes: Vec<MeshDesc>, materials: Vec<MaterialDesc>) -> SceneDesc {
 /// One quad at depth 1 exactly filling the view.
 fn view_filling(material: MaterialDesc) -> SceneDesc {
     let h = 30f32.to_radians().tan();
-    let q = quad(
+    let q = common::textured_quad(
         Vec3::new(-h, -h, -1.0),
         Vec3::X * 2.0 * h,
         Vec3::Y * 2.0 * h,
@@ -136,11 +120,6 @@ fn assert_image_mean(label: &str, scene: &Scene, max_depth: u32, expected: f64) 
 }
 
 /// Writes a one-channel (grey) EXR of `w × h` values, row 0 at the top.
-fn grey_exr(path: &Path, w: usize, h: usize, values: &[f32]) {
-    let image = RgbImage::from_pixels(w, h, values.iter().map(|&v| [v; 3]).collect()).unwrap();
-    write_exr(path, &ExrLayers::beauty(image)).expect("write texture");
-}
-
 fn black() -> MaterialDesc {
     common::material("black", BsdfDesc::Diffuse { albedo: Vec3::ZERO }, None)
 }
@@ -152,7 +131,7 @@ fn a_textured_mirror_reflects_its_texture() {
     let values: Vec<f32> = (0..16)
         .map(|k| 0.05 + 0.9 * ((k * 7) % 16) as f32 / 15.0)
         .collect();
-    grey_exr(&path, 4, 4, &values);
+    common::grey_exr(&path, 4, 4, &values);
     let mut mirror = common::material(
         "mirror",
         BsdfDesc::Mirror {
@@ -172,7 +151,7 @@ fn cut_outs_let_the_open_fraction_through() {
     // A 3 × 1 mask (1, 0, 0): bilinear values reach the cutoff 1/2 within
     // half a texel of the opaque texel's centre, so one third is opaque.
     let stripes = dir.join("stripes.exr");
-    grey_exr(&stripes, 3, 1, &[1.0, 0.0, 0.0]);
+    common::grey_exr(&stripes, 3, 1, &[1.0, 0.0, 0.0]);
     let mut masked = black();
     masked.textures.opacity = Some(TextureRef::new(&stripes, ColorSpace::Linear));
     masked.textures.opacity_cutoff = Some(0.5);
@@ -180,7 +159,7 @@ fn cut_outs_let_the_open_fraction_through() {
     // Stochastic opacity: open with probability 1 − alpha.
     let alphas = [0.1f32, 0.9, 0.5, 0.3, 0.7, 0.2, 1.0, 0.0, 0.6];
     let coverage = dir.join("coverage.exr");
-    grey_exr(&coverage, 3, 3, &alphas);
+    common::grey_exr(&coverage, 3, 3, &alphas);
     let mut blended = black();
     blended.textures.opacity = Some(TextureRef::new(&coverage, ColorSpace::Linear));
     let open = 1.0 - alphas.iter().map(|&a| f64::from(a)).sum::<f64>() / 9.0;
@@ -229,7 +208,7 @@ fn a_flat_normal_map_renders_bit_for_bit_as_none() {
     mapped.textures.normal = Some(TextureRef::new(&flat, ColorSpace::Linear));
     let render_with = |m: MaterialDesc, tangents: bool| {
         let h = 30f32.to_radians().tan();
-        let mut q = quad(
+        let mut q = common::textured_quad(
             Vec3::new(-h, -h, -1.3),
             Vec3::new(2.0 * h, 0.0, -0.4),
             Vec3::Y * 2.0 * h,

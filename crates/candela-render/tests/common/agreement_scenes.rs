@@ -4,7 +4,6 @@
 //! a thin-lens view, the glass room of `common::glass_room`, and a lamp
 //! with an emission texture seen through a stochastic cut-out screen.
 
-use candela_image::{write_exr, ExrLayers, RgbImage};
 use candela_render::camera::framing::CameraMode;
 use candela_render::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
 use candela_render::scene::{Scene, SceneOptions};
@@ -12,7 +11,7 @@ use candela_scene::{
     load, BsdfDesc, ColorSpace, InstanceDesc, LoadOptions, MeshDesc, SceneDesc, SourceLoc,
     SphereDesc, TextureRef,
 };
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec3};
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -133,28 +132,6 @@ pub fn glass_room() -> Scene {
     build(&super::glass_room(), &options(CameraMode::File))
 }
 
-/// A quad `corner + s·u + t·v`, uv = (s, t), facing `u × v`.
-fn textured_quad(corner: Vec3, u: Vec3, v: Vec3, material: usize) -> MeshDesc {
-    MeshDesc {
-        name: format!("quad {material}"),
-        positions: vec![corner, corner + u, corner + u + v, corner + v],
-        triangles: vec![[0, 1, 2], [0, 2, 3]],
-        normals: vec![u.cross(v).normalize()],
-        normal_indices: vec![[0; 3]; 2],
-        uvs: vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y],
-        uv_indices: vec![[0, 1, 2], [0, 2, 3]],
-        material,
-        ..Default::default()
-    }
-}
-
-/// Writes a grey EXR texture of `w × h` values, row 0 at the top.
-fn grey_exr(path: &std::path::Path, w: usize, h: usize, values: &[f32]) {
-    let image = RgbImage::from_pixels(w, h, values.iter().map(|&v| [v; 3]).collect())
-        .expect("texture size");
-    write_exr(path, &ExrLayers::beauty(image)).expect("write texture");
-}
-
 /// A diffuse floor facing the camera, lit by a lamp above the view whose
 /// emission is a 4 × 4 texture, through a diffuse screen with a 3 × 2
 /// stochastic-opacity texture (partly in view): light sampling must
@@ -166,9 +143,9 @@ pub fn textured_lamp_through_a_cut_out_screen() -> Scene {
     let glow_values: Vec<f32> = (0..16)
         .map(|k| 0.2 + 3.0 * ((k * 5) % 16) as f32 / 15.0)
         .collect();
-    grey_exr(&glow, 4, 4, &glow_values);
+    super::grey_exr(&glow, 4, 4, &glow_values);
     let holes = dir.join("holes.exr");
-    grey_exr(&holes, 3, 2, &[0.0, 1.0, 0.4, 0.8, 0.1, 1.0]);
+    super::grey_exr(&holes, 3, 2, &[0.0, 1.0, 0.4, 0.8, 0.1, 1.0]);
     let diffuse = |name: &str, albedo: f32| {
         let albedo = Vec3::splat(albedo);
         super::material(name, BsdfDesc::Diffuse { albedo }, None)
@@ -178,9 +155,9 @@ pub fn textured_lamp_through_a_cut_out_screen() -> Scene {
     let mut screen = diffuse("screen", 0.5);
     screen.textures.opacity = Some(TextureRef::new(&holes, ColorSpace::Linear));
     let meshes = vec![
-        textured_quad(Vec3::new(-1.5, -1.5, -2.5), Vec3::X * 3.0, Vec3::Y * 3.0, 0),
-        textured_quad(Vec3::new(-0.8, 1.6, -2.4), Vec3::X * 1.6, Vec3::Z * 1.4, 1),
-        textured_quad(Vec3::new(-1.2, 0.9, -2.4), Vec3::X * 2.4, Vec3::Z * 1.8, 2),
+        super::textured_quad(Vec3::new(-1.5, -1.5, -2.5), Vec3::X * 3.0, Vec3::Y * 3.0, 0),
+        super::textured_quad(Vec3::new(-0.8, 1.6, -2.4), Vec3::X * 1.6, Vec3::Z * 1.4, 1),
+        super::textured_quad(Vec3::new(-1.2, 0.9, -2.4), Vec3::X * 2.4, Vec3::Z * 1.8, 2),
     ];
     let desc = SceneDesc {
         source: "textured lamp".into(),

@@ -365,3 +365,33 @@ pub fn glass_room() -> SceneDesc {
     ));
     desc
 }
+
+/// A quad `corner + s·u + t·v`, uv = (s, t), facing `u × v`: the textured
+/// test scenes' one shape.
+pub fn textured_quad(corner: Vec3, u: Vec3, v: Vec3, material: usize) -> MeshDesc {
+    MeshDesc {
+        name: format!("quad {material}"),
+        positions: vec![corner, corner + u, corner + u + v, corner + v],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        normals: vec![u.cross(v).normalize()],
+        normal_indices: vec![[0; 3]; 2],
+        uvs: vec![
+            glam::Vec2::ZERO,
+            glam::Vec2::X,
+            glam::Vec2::ONE,
+            glam::Vec2::Y,
+        ],
+        uv_indices: vec![[0, 1, 2], [0, 2, 3]],
+        material,
+        ..Default::default()
+    }
+}
+
+/// Writes a grey EXR texture of `w × h` values, row 0 at the top.
+pub fn grey_exr(path: &std::path::Path, w: usize, h: usize, values: &[f32]) {
+    let image =
+        candela_image::RgbImage::from_pixels(w, h, values.iter().map(|&v| [v; 3]).collect())
+            .expect("texture size");
+    candela_image::write_exr(path, &candela_image::ExrLayers::beauty(image))
+        .expect("write texture");
+}
