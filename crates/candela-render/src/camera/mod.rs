@@ -130,10 +130,12 @@ impl Camera {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn camera() -> Camera {
+    /// A 640 × 480 camera at z = 5 looking at the origin: the camera
+    /// module's tests share it.
+    pub(crate) fn camera() -> Camera {
         Camera::look_at(
             Vec3::new(0.0, 0.0, 5.0),
             Vec3::ZERO,

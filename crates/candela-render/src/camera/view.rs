@@ -87,18 +87,7 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn camera() -> Camera {
-        Camera::look_at(
-            Vec3::new(0.0, 0.0, 5.0),
-            Vec3::ZERO,
-            Vec3::Y,
-            60.0,
-            45.0,
-            640,
-            480,
-        )
-    }
+    use crate::camera::tests::camera;
 
     #[test]
     fn a_view_looks_where_it_says() {
