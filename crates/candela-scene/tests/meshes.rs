@@ -4,6 +4,7 @@
 //! and mutated files that must never panic.
 
 use candela_scene::{demo_scene, load, BsdfDesc, ErrorKind, LoadOptions, SceneDesc};
+use candela_testkit::TempDir;
 use glam::Vec3;
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
@@ -146,9 +147,8 @@ fn the_shared_corpus_files_load() {
     assert!(l.report.mentions("confidence"), "{}", l.report);
 }
 
-fn temp(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("candela-meshes-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+/// Writes `text` to `name` in the test's folder `dir`.
+fn temp(dir: &TempDir, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p
@@ -156,6 +156,7 @@ fn temp(name: &str, text: &str) -> PathBuf {
 
 #[test]
 fn missing_references_warn_or_fail_in_strict_mode() {
+    let dir = TempDir::new("meshes");
     let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     let cases = [
         (
@@ -174,9 +175,13 @@ fn missing_references_warn_or_fail_in_strict_mode() {
             "absent.png",
         ),
     ];
-    temp("no-tex.mtl", "newmtl t\nKd 1 1 1\nmap_Kd absent.png\n");
+    temp(
+        &dir,
+        "no-tex.mtl",
+        "newmtl t\nKd 1 1 1\nmap_Kd absent.png\n",
+    );
     for (name, text, needle) in cases {
-        let path = temp(name, &text);
+        let path = temp(&dir, name, &text);
         let l = load(&path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
         assert!(l.report.mentions(needle), "{name}: {}", l.report);
         assert_eq!(l.scene.triangle_count(), 1);
@@ -188,7 +193,9 @@ fn missing_references_warn_or_fail_in_strict_mode() {
 
 #[test]
 fn obj_statements_polygons_and_negative_indices() {
+    let dir = TempDir::new("meshes");
     let path = temp(
+        &dir,
         "ngon.obj",
         "# a pentagon, CRLF\r\nv 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nv 0.5 2 0\r\nv 0 1 0\r\nvt 0 0\r\n\
          g pent\r\nf -5/1 -4/1 -3/1 -2/1 -1/1\r\ncurv 0 1 1 2\r\ncurv 0 1 2 3\r\n",
@@ -244,10 +251,11 @@ fn ply_bytes(encoding: &str) -> Vec<u8> {
 
 #[test]
 fn the_fuzz_bases_load() {
-    let obj = temp("base.obj", VALID_OBJ);
+    let dir = TempDir::new("meshes");
+    let obj = temp(&dir, "base.obj", VALID_OBJ);
     assert_eq!(load(&obj, &strict()).unwrap().scene.triangle_count(), 3);
     for enc in ["ascii", "binary_little_endian"] {
-        let p = temp(&format!("base-{enc}.ply"), "");
+        let p = temp(&dir, &format!("base-{enc}.ply"), "");
         std::fs::write(&p, ply_bytes(enc)).unwrap();
         let l = load(&p, &strict()).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(l.scene.triangle_count(), 3);
@@ -304,7 +312,7 @@ proptest! {
 
     #[test]
     fn mutated_files_never_panic(ms in proptest::collection::vec(mutation(), 1..4)) {
-        let dir = temp("fuzz.obj", "").with_file_name("");
+        let dir = TempDir::new("meshes-fuzz");
         loads_or_fails(&dir.join("fuzz.obj"), &mutate(VALID_OBJ.as_bytes().to_vec(), &ms));
         loads_or_fails(&dir.join("fuzz-ascii.ply"), &mutate(ply_bytes("ascii"), &ms));
         loads_or_fails(&dir.join("fuzz-le.ply"), &mutate(ply_bytes("binary_little_endian"), &ms));
@@ -313,8 +321,9 @@ proptest! {
 
 #[test]
 fn an_mtl_error_names_the_library_and_its_line() {
-    let mtl = temp("bad.mtl", "newmtl a\nKd 0.5 x 0.5\n");
-    let obj = temp("bad-mtl.obj", "mtllib bad.mtl\nv 0 0 0\n");
+    let dir = TempDir::new("meshes");
+    let mtl = temp(&dir, "bad.mtl", "newmtl a\nKd 0.5 x 0.5\n");
+    let obj = temp(&dir, "bad-mtl.obj", "mtllib bad.mtl\nv 0 0 0\n");
     let e = load(&obj, &LoadOptions::default()).unwrap_err();
     assert_eq!(e.kind, ErrorKind::BadNumber);
     assert_eq!(

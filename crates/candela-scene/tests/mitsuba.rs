@@ -208,8 +208,7 @@ fn caller_defines_override_the_files_defaults() {
 
 #[test]
 fn unsupported_plugins_warn_once_or_fail_in_strict_mode() {
-    let dir = std::env::temp_dir().join(format!("candela-mitsuba-warn-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = candela_testkit::TempDir::new("mitsuba-warn");
     let path = dir.join("warn.xml");
     let body = r#"<scene version="3.0.0">
     <shape type="cube"><bsdf type="principled"/></shape>
@@ -380,9 +379,8 @@ fn mutate(mut bytes: Vec<u8>, mutations: &[Mutation]) -> Vec<u8> {
 }
 
 /// A scratch copy of the base files, the mutated scene written over `base.xml`.
-fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("candela-mitsuba-fuzz-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+fn scratch() -> candela_testkit::TempDir {
+    let dir = candela_testkit::TempDir::new("mitsuba-fuzz");
     for f in ["quad.obj", "part.xml"] {
         std::fs::copy(base_dir().join(f), dir.join(f)).unwrap();
     }

@@ -48,6 +48,39 @@ impl Drop for TempDir {
     }
 }
 
+/// One file in a folder of its own, both removed when dropped; it derefs
+/// to the file's path, so `load(&temp_file(..))` cleans up after the call.
+pub struct TempFile {
+    path: PathBuf,
+    _dir: TempDir,
+}
+
+impl TempFile {
+    /// Writes `bytes` to `name` in a fresh [`TempDir`] labelled `label`.
+    ///
+    /// # Panics
+    /// If the file cannot be written (a test environment problem).
+    pub fn new(label: &str, name: &str, bytes: &[u8]) -> Self {
+        let dir = TempDir::new(label);
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).expect("write test file");
+        Self { path, _dir: dir }
+    }
+}
+
+impl std::ops::Deref for TempFile {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.path
+    }
+}
+
+impl AsRef<Path> for TempFile {
+    fn as_ref(&self) -> &Path {
+        &self.path
+    }
+}
+
 /// A small deterministic generator (SplitMix64, Steele et al. 2014) so
 /// statistical tests use fixed seeds and every failure reproduces. The
 /// field is the state: `SplitMix64(seed)`.

@@ -4,7 +4,6 @@
 
 use base64::Engine;
 use serde_json::{json, Value};
-use std::path::PathBuf;
 
 /// Three positions (0,0,0), (1,0,0), (0,1,0), then u16 indices 0 1 2 and
 /// two bytes of padding.
@@ -96,11 +95,8 @@ pub fn glb() -> Vec<u8> {
     glb_of(&document(None), &buffer())
 }
 
-/// Writes `bytes` to a fresh file `name` in a per-process temporary folder.
-pub fn write(name: &str, bytes: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("candela-gltf-tests-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join(name);
-    std::fs::write(&path, bytes).expect("write");
-    path
+/// Writes `bytes` to a fresh file `name` in a temporary folder of its own,
+/// removed when the returned guard is dropped.
+pub fn write(name: &str, bytes: &[u8]) -> candela_testkit::TempFile {
+    candela_testkit::TempFile::new("gltf-tests", name, bytes)
 }
