@@ -19,6 +19,12 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let (cli, matches) = args::parse();
+    if matches!(
+        cli.command,
+        Some(args::Command::Bench(_) | args::Command::Compare(_))
+    ) {
+        exit_quietly_on_closed_pipe();
+    }
     let result = match cli.command {
         Some(args::Command::Bench(cmd)) => bench::run(cmd).map(|()| render_cmd::Outcome::Done),
         Some(args::Command::Compare(cmd)) => compare::run(&cmd).map(|()| render_cmd::Outcome::Done),
@@ -39,6 +45,19 @@ fn main() -> ExitCode {
             eprintln!("candela: error: {}", one_line(&err));
             ExitCode::from(exit_code(&err))
         }
+    }
+}
+
+/// Benchmark and comparison tables are often piped into `head`: when the
+/// reader closes the pipe, end quietly as other command-line tools do
+/// instead of panicking in `println!`. Only for those commands: the
+/// viewer's sockets must never kill its server.
+fn exit_quietly_on_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: called once at start-up, before any thread exists; SIG_DFL
+    // is a valid disposition for SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
 

@@ -60,6 +60,9 @@ pub fn explicit_settings(
             args.output.display()
         )));
     }
+    // A folder that is missing or read-only fails now, not after the render.
+    candela_image::check_writable(&args.output)
+        .map_err(|e| UsageError(format!("-f {}: {e}", args.output.display())))?;
     let explicit = args.explicit_settings(matches);
     // Check the parsed values themselves too: JSON cannot carry a NaN.
     let mut given = args.settings.clone();

@@ -180,13 +180,39 @@ fn impossible_flags_are_usage_errors() {
         &["-m", "3", "--bounce", "4"],
         &["--bounce", "1", "--direct-only"],
     ] {
-        let run = candela(&[args, &["-q", "-f", "/nonexistent/never.png"]].concat());
+        // A writable output, so that the flags alone make the error; and
+        // nothing may be written.
+        let dir = scratch("usage");
+        let out = dir.join("never.png");
+        let run = candela(&[args, &["-q", "-f", out.to_str().unwrap()]].concat());
         assert_eq!(
             run.status.code(),
             Some(2),
             "{args:?}: {}",
             String::from_utf8_lossy(&run.stderr)
         );
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "{args:?}"
+        );
+    }
+}
+
+#[test]
+fn an_output_folder_that_cannot_be_written_fails_before_the_render() {
+    let dir = scratch("unwritable");
+    let folder_as_output = dir.join("image.png");
+    std::fs::create_dir(&folder_as_output).unwrap();
+    for out in [
+        "/nonexistent/never.png".to_string(),
+        folder_as_output.display().to_string(),
+    ] {
+        // Slow settings: the check must come before the render, not after.
+        let run = candela(&["-q", "-s", "100000", "-f", &out]);
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{out}: {err}");
+        assert!(err.contains(&out) && err.lines().count() == 1, "{err}");
     }
 }
 

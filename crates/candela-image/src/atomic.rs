@@ -18,6 +18,35 @@ use crate::error::{BoxError, ImageError};
 /// Distinguishes temporaries of concurrent writes within one process.
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
+/// Checks, before hours of rendering, that [`atomic_write`] will be able to
+/// create its temporary beside `path`: creates that temporary and removes
+/// it again. Nothing is left at `path` or beside it.
+///
+/// # Errors
+/// [`ImageError::Io`] naming `path` (a missing folder, no permission, a
+/// read-only file system).
+pub fn check_writable(path: impl AsRef<Path>) -> Result<(), ImageError> {
+    let path = path.as_ref();
+    if path.is_dir() {
+        return Err(ImageError::InvalidArgument(format!(
+            "output path {} is a folder",
+            path.display()
+        )));
+    }
+    let temp_path = temp_path_for(path)?;
+    OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&temp_path)
+        .map_err(|source| ImageError::Io {
+            action: "cannot create",
+            path: path.to_path_buf(),
+            source,
+        })?;
+    drop(RemoveOnDrop(Some(temp_path)));
+    Ok(())
+}
+
 /// Writes a file atomically: `write` fills a buffered temporary file which
 /// then replaces `path` in one rename.
 ///

@@ -22,7 +22,7 @@ pub mod render_info;
 mod tonemap;
 pub mod variance;
 
-pub use atomic::atomic_write;
+pub use atomic::{atomic_write, check_writable};
 pub use buffer::{GrayImage, RgbImage};
 pub use colormap::{rate_colormap, rate_image};
 pub use error::{BoxError, ImageError};
