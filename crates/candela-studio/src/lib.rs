@@ -19,6 +19,8 @@
 pub mod assets;
 pub mod bvh_view;
 pub mod command_line;
+mod film_requests;
+pub mod frames;
 pub mod mesh;
 pub mod protocol;
 pub mod scene_pool;
