@@ -19,12 +19,20 @@ the page in Debian's chromium (Playwright, the system browser), and measures:
    (the page's own "copy command line", same thread count), whose
    `samples/s` line times the render alone (no load or BVH build).
 
+Around each studio render it also reads CPU seconds from /proc
+(benches/proc_cpu.py), which a loaded machine does not distort: the render
+threads', the server's overhead (every other server thread: the worker that
+builds and encodes frames, the async threads that send them) and chromium's
+(decoding and drawing frames). The CLI's CPU seconds (load and BVH build
+included) are printed beside.
+
 The load average is read at each measurement: the machine is shared, so the
 figures are only comparable within one sitting. The last line is a
 ready-to-paste row for BENCHMARKS.md.
 """
 import argparse
 import os
+import resource
 import shlex
 import statistics
 import subprocess
@@ -33,6 +41,9 @@ import tempfile
 import time
 
 from playwright.sync_api import sync_playwright
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from proc_cpu import cpu_delta, cpu_snapshot  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CANDELA = os.environ.get("CANDELA_BIN", os.path.join(ROOT, "target", "release", "candela"))
@@ -82,10 +93,13 @@ def camera_stops(pg, stops):
     return page_ms, server_ms, loads
 
 
-def server_throughput(pg):
-    """Samples/s of one full render of the current camera, refinement only."""
+def server_throughput(pg, server_pid):
+    """Samples/s of one full render of the current camera, refinement only,
+    and the CPU seconds it cost (see proc_cpu.cpu_delta)."""
+    before = cpu_snapshot(server_pid)
     pg.evaluate("window.studio.headers = []; window.studio.render()")
     wait_job(pg, "h.done")
+    cpu = cpu_delta(cpu_snapshot(server_pid), before)
     headers = [h for h in pg.evaluate("window.studio.headers") if h["job"] == pg.evaluate("window.studio.job")]
     coarse = next(h for h in headers if h["coarse"])
     last = headers[-1]
@@ -96,16 +110,25 @@ def server_throughput(pg):
     own = seconds - rendering
     timeline = ", ".join(f"{h['spp']}@{h['elapsed_ms'] / 1e3:.1f}s" for h in headers if not h["coarse"])
     print(f"  frames {timeline}; server's own work {own:.2f} s of {seconds:.1f} s ({100 * own / seconds:.1f}%)")
-    return WIDTH * HEIGHT * last["spp"] / seconds, last["command"], last["elapsed_ms"] / 1e3
+    threads = ", ".join(f"{n} {v:.2f}" for n, v in sorted(cpu["per_thread"].items()))
+    print(f"  CPU s: rendering {cpu['rendering']:.2f}, server overhead {cpu['overhead']:.2f} ({threads}), "
+          f"chromium {cpu['chromium']:.2f}")
+    return WIDTH * HEIGHT * last["spp"] / seconds, last["command"], last["elapsed_ms"] / 1e3, cpu
 
 
 def cli_throughput(command, out):
     words = shlex.split(command)
     words[0], words[-1] = CANDELA, out
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     run = subprocess.run(words, capture_output=True, text=True, check=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    # The CLI's CPU seconds (load and BVH build included): of the children
+    # waited for, only it ended in between.
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     for line in run.stderr.splitlines():
         if line.endswith("samples/s"):
             seconds = float(line.split(" in ")[1].split(" s ")[0])
+            print(f"  CPU s: CLI process {cpu:.2f}")
             return float(line.split()[-2]), seconds
     raise SystemExit(f"no samples/s line from the CLI:\n{run.stderr}")
 
@@ -136,14 +159,15 @@ def main():
                                  timeout=300000)
             page_ms, server_ms, stop_loads = camera_stops(pg, a.stops)
             wait_job(pg, "h.done")
-            studio, cli, ab_loads = [], [], []
+            studio, cli, ab_loads, cpus = [], [], [], []
             command = pg.evaluate("window.studio.lastHeader.command")
             for r in range(a.rounds):
                 # A B, then B A: a load that drifts during a round favours neither.
                 for side in ("studio", "cli") if r % 2 == 0 else ("cli", "studio"):
                     if side == "studio":
-                        rate, command, wall = server_throughput(pg)
+                        rate, command, wall, cpu = server_throughput(pg, proc.pid)
                         studio.append(rate)
+                        cpus.append(cpu)
                     else:
                         rate, wall = cli_throughput(command, os.path.join(tmp, "cli.png"))
                         cli.append(rate)
@@ -167,11 +191,16 @@ def main():
     print(f"first coarse frame: page median {pm:.0f} ms, p90 {p90:.0f} ms; server median {sm:.0f} ms, p90 {s90:.0f} ms")
     print(f"steady state: studio / CLI per round {', '.join(f'{r:.3f}' for r in ratios)}, median {ratio:.3f}")
     print(f"load average {min(loads):.1f}-{max(loads):.1f}")
+    share = statistics.median(c["overhead"] / c["rendering"] for c in cpus)
+    chromium = statistics.median(c["chromium"] / c["rendering"] for c in cpus)
+    print(f"CPU per refinement, median over rounds: server overhead {100 * share:.1f}% and chromium "
+          f"{100 * chromium:.1f}% of the render threads' CPU")
     print("| date | scene | threads | load | coarse frame, page median / p90 | server median / p90 "
-          "| studio samples/s | CLI samples/s | studio / CLI |")
+          "| studio samples/s | CLI samples/s | studio / CLI | server overhead / chromium CPU |")
     print(f"| {time.strftime('%Y-%m-%d')} | {os.path.basename(a.scene)} {WIDTH}×{HEIGHT}, {a.spp} spp "
           f"| {a.threads} | {min(loads):.1f}–{max(loads):.1f} | {pm:.0f} / {p90:.0f} ms | {sm:.0f} / {s90:.0f} ms "
-          f"| {statistics.median(studio):,.0f} | {statistics.median(cli):,.0f} | {ratio:.2f} |")
+          f"| {statistics.median(studio):,.0f} | {statistics.median(cli):,.0f} | {ratio:.2f} "
+          f"| {100 * share:.1f}% / {100 * chromium:.1f}% |")
 
 
 if __name__ == "__main__":

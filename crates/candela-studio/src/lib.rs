@@ -5,7 +5,7 @@
 //! ([`assets`]) and renders the one scene it was given. The page draws the
 //! scene's triangles with WebGL2, orbits the camera, and shows the
 //! path-traced image of the current camera progressively: a coarse frame
-//! first, then refinement passes that add sample ranges to the film
+//! first, then the render itself, with frames of its film between passes
 //! ([`worker`]). It is one more front end on the one settings description:
 //! the page sends settings changes as JSON ([`candela_render::settings::Settings::resolve`]),
 //! the camera as the settings `eye`/`look_at`/`up`/`fov`, and saves through
@@ -19,6 +19,8 @@
 pub mod assets;
 pub mod bvh_view;
 pub mod command_line;
+mod film_requests;
+pub mod frames;
 pub mod mesh;
 pub mod protocol;
 pub mod scene_pool;

@@ -197,7 +197,7 @@ pub struct FrameHeader {
     /// Milliseconds since the request arrived.
     pub elapsed_ms: f64,
     /// Of those, the milliseconds spent rendering (the rest is the
-    /// server's own work: camera set-up, summing passes, encoding frames).
+    /// server's own work: camera set-up, copying out and encoding frames).
     pub render_ms: f64,
     /// The `candela` command line that renders the same image.
     pub command: String,

@@ -23,9 +23,14 @@ async function main() {
   // echoes it in each frame, and frames of older ids are dropped.
   let mode = "render", layer = "beauty", layerSettings = {}, cell = null, job = 0;
   const redraw = () => View3D.draw(Orbit.camera(), radius, { dim: mode === "bvh" });
+  // The 3D view is hidden while the opaque image covers it: without a GPU
+  // (SwiftShader), compositing one canvas fewer per frame saves a
+  // measurable part of the browser's CPU during a refinement (BENCHMARKS.md).
   const showImage = (on) => {
-    $("image").style.visibility = on && mode !== "bvh" ? "visible" : "hidden";
+    const shown = on && mode !== "bvh";
+    $("image").style.visibility = shown ? "visible" : "hidden";
     $("image").style.opacity = mode === "inspect" ? 0.5 : 1;
+    $("gl").style.visibility = shown && mode !== "inspect" ? "hidden" : "visible";
   };
 
   const render = () => {
