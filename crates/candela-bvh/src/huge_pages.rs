@@ -27,7 +27,10 @@ pub fn on_huge_pages<T: Copy>(v: Vec<T>) -> Vec<T> {
     }
     let spare = HUGE_PAGE.div_ceil(std::mem::size_of::<T>());
     let mut out: Vec<T> = Vec::with_capacity(v.len() + spare);
-    advise(out.as_ptr() as usize, out.capacity() * std::mem::size_of::<T>());
+    advise(
+        out.as_ptr() as usize,
+        out.capacity() * std::mem::size_of::<T>(),
+    );
     out.extend_from_slice(&v);
     out
 }
