@@ -115,6 +115,9 @@ def main():
     ap.add_argument("--single", type=int, default=20000,
                     help="rays for the one-at-a-time (Python per call) figure; 0 skips it")
     ap.add_argument("--limit", type=int, help="replay only the first N rays")
+    ap.add_argument("--write-hits", metavar="HITS",
+                    help="write Embree's closest hits of the first 10,000 rays as a .hits file "
+                         "(reference ids for `candela bench rays --hits`)")
     args = ap.parse_args()
 
     verts, idx = read_tri(args.mesh)
@@ -139,6 +142,18 @@ def main():
         got = scene.run(origins[:m], dirs[:m]).astype(np.int64)
         want = np.where(id_ref[:m] == 0xFFFFFFFF, -1, id_ref[:m].astype(np.int64))
         print(f"check: {int((got == want).sum())} of {m} primitive ids match the reference")
+
+    if args.write_hits:
+        m = min(10000, n)
+        out = scene.run(origins[:m], dirs[:m], output=1)
+        miss = np.asarray(out["geomID"]).astype(np.int64) & 0xFFFFFFFF == 0xFFFFFFFF
+        ids = np.where(miss, 0xFFFFFFFF, np.asarray(out["primID"]).astype(np.int64) & 0xFFFFFFFF).astype("<u4")
+        t = np.where(miss, np.inf, out["tfar"]).astype("<f4")
+        rec = np.empty(m, np.dtype([("t", "<f4"), ("id", "<u4")]))
+        rec["t"], rec["id"] = t, ids
+        with open(args.write_hits, "wb") as f:
+            f.write(b"HITS" + struct.pack("<II", 1, m) + bytes(20) + rec.tobytes())
+        print(f"wrote {args.write_hits}: closest hits of the first {m} rays")
 
     for label, query in (("closest", "INTERSECT"), ("any", "OCCLUDED")):
         rate, res = fastest(lambda: scene.run(origins, dirs, query=query), n, args.seconds)

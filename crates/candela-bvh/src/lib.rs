@@ -13,6 +13,7 @@
 mod aabb;
 mod avx2;
 mod build;
+mod huge_pages;
 mod node;
 pub mod simd;
 mod traverse;
@@ -23,6 +24,7 @@ mod wide_validate;
 
 pub use aabb::Aabb;
 pub use avx2::has_avx2;
+pub use huge_pages::on_huge_pages;
 pub use node::Node;
 pub use traverse::{RayBoxQuery, StatsSink, TraversalStats};
 pub use wide::{Bvh4, Bvh8, Node4, Node8, WideBvh, WideNode, PADDING};

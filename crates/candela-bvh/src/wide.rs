@@ -102,7 +102,7 @@ impl<const W: usize> WideBvh<W> {
             depth = emit(&bvh.nodes, root, &mut nodes, 1);
         }
         Self {
-            nodes,
+            nodes: crate::on_huge_pages(nodes),
             order: bvh.order,
             depth,
             avx2: W == 8 && crate::avx2::has_avx2(),

@@ -130,6 +130,7 @@ impl<const W: usize> Wide<W> {
             .iter()
             .map(|&id| refs.get(id as usize).copied().unwrap_or(PADDING_REF))
             .collect();
+        let slot_refs = candela_bvh::on_huge_pages(slot_refs);
         let leaves = LeafBlocks::new(&slot_refs, shape);
         Self {
             bvh,

@@ -73,7 +73,9 @@ impl LeafBlocks {
                 }
             })
             .collect();
-        Self { blocks }
+        Self {
+            blocks: candela_bvh::on_huge_pages(blocks),
+        }
     }
 
     /// Starts loading the blocks of slots `first .. first + count` (a leaf
