@@ -137,6 +137,9 @@ impl LightBounds {
     /// without a normal). Zero only where no emitter of the group can
     /// reach the point (see the module docs).
     pub fn importance(&self, ctx: &LightContext) -> f32 {
+        if self.behind(ctx) {
+            return 0.0;
+        }
         let center = self.centroid();
         let to_p = ctx.p - center;
         let d2 = to_p.length_squared();
@@ -179,6 +182,25 @@ impl LightBounds {
             importance *= cos_receive.max(0.0);
         }
         importance.max(0.0)
+    }
+}
+
+impl LightBounds {
+    /// Exact half-space tests on the box, tighter than the cones of its
+    /// bounding sphere that [`LightBounds::importance`] uses: the whole box
+    /// lies below a one-sided receiver's horizon, or (for emitters that
+    /// all share the normal `axis`, such as a grid of lamps) the point lies
+    /// behind every emitter's plane. Cutting such groups at the parent
+    /// keeps the walk from entering nodes whose children are all dark.
+    fn behind(&self, ctx: &LightContext) -> bool {
+        let center = self.centroid();
+        let half = 0.5 * (self.hi - self.lo);
+        // max over the box of v · (q − p) = v · (c − p) + |v| · half.
+        let reach = |v: Vec3| v.dot(center - ctx.p) + v.abs().dot(half);
+        let below_horizon = !ctx.two_sided && ctx.n != Vec3::ZERO && reach(ctx.n) <= 0.0;
+        // Emits toward p from q only if axis · (p − q) > 0.
+        let behind_emitters = self.cos_o >= 1.0 && reach(-self.axis) <= 0.0;
+        below_horizon || behind_emitters
     }
 }
 

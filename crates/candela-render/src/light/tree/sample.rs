@@ -112,4 +112,33 @@ impl LightTree {
         }
         pmf
     }
+
+    /// Probability that [`LightTree::choose`] at `ctx` returns `None`: the
+    /// mass the walk sends into nodes whose children the bounds both prove
+    /// dark (a parent's looser bounds may not), so that
+    /// `Σ pmf + dark_probability = 1`. Every path is walked: for tests.
+    #[cfg(test)]
+    pub(super) fn dark_probability(&self, ctx: &LightContext) -> f64 {
+        fn walk(nodes: &[Node], at: usize, ctx: &LightContext, mass: f64) -> f64 {
+            if nodes[at].leaf {
+                return 0.0;
+            }
+            match branch(nodes, at, ctx) {
+                None => mass,
+                Some(p0) => {
+                    let second = nodes[at].second_or_light as usize;
+                    walk(nodes, at + 1, ctx, mass * f64::from(p0))
+                        + walk(nodes, second, ctx, mass * f64::from(1.0 - p0))
+                }
+            }
+        }
+        let tree_mass = f64::from(1.0 - self.p_infinite);
+        if self.nodes.is_empty() {
+            return if self.infinite.is_empty() { 1.0 } else { 0.0 };
+        }
+        if self.nodes[0].leaf && !root_leaf_reaches(&self.nodes, ctx) {
+            return tree_mass;
+        }
+        walk(&self.nodes, 0, ctx, tree_mass)
+    }
 }
