@@ -101,11 +101,11 @@ def main():
     for name, quads in lamps.items():
         write_ply(os.path.join(HERE, f"{name}.ply"), quads)
     radiance = {
-        "ceiling0": "12, 10, 8",
-        "ceiling1": "8, 10, 12",
-        "ceiling2": "10, 10, 10",
-        "wall_left": "60, 20, 10",
-        "wall_right": "10, 30, 60",
+        "ceiling0": "1.6, 1.3, 1.0",
+        "ceiling1": "1.0, 1.3, 1.6",
+        "ceiling2": "1.3, 1.3, 1.3",
+        "wall_left": "40, 12, 6",
+        "wall_right": "6, 18, 40",
     }
     triangles = 2 * sum(len(q) for q in lamps.values())
     xml = [

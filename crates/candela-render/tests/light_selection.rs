@@ -33,7 +33,10 @@ fn block_stats(scene: &Scene, how: LightSelection, spp: u32, seed: u64) -> Block
                 ..Default::default()
             };
             let out = render(scene, &settings, &|_| {}).expect("render");
-            assert_eq!(out.stats.invalid_samples, 0, "{how:?}: NaN or infinite samples");
+            assert_eq!(
+                out.stats.invalid_samples, 0,
+                "{how:?}: NaN or infinite samples"
+            );
             out.film.resolve()
         })
         .collect();

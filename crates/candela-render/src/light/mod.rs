@@ -50,8 +50,8 @@ pub use envmap::{EnvironmentLight, EnvironmentMap, EnvironmentOptions};
 pub use infinite::AmbientLight;
 pub use select::{LightSelection, LightSelector, AUTO_TREE_ABOVE};
 pub use set::LightSet;
-pub use tree::{LightBounds, LightContext, LightTree};
 pub use sky::ProceduralSky;
+pub use tree::{LightBounds, LightContext, LightTree};
 
 use glam::{Vec2, Vec3};
 

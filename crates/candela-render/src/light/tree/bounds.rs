@@ -153,7 +153,11 @@ impl LightBounds {
             let sin2 = half_diagonal2 / d2;
             (sin2.sqrt(), (1.0 - sin2).max(0.0).sqrt())
         };
-        let wi = if d2 > 0.0 { to_p / d2.sqrt() } else { Vec3::ZERO };
+        let wi = if d2 > 0.0 {
+            to_p / d2.sqrt()
+        } else {
+            Vec3::ZERO
+        };
         // Smallest angle between an emitter's normal and the direction to
         // the point: θ' = max(0, θw − θo − θb).
         let cos_w = self.axis.dot(wi).clamp(-1.0, 1.0);
@@ -246,7 +250,11 @@ mod tests {
                 let frame = crate::geometry::Frame::from_normal(w);
                 for k in 0..16 {
                     let phi = k as f32 * PI / 8.0;
-                    let local = Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+                    let local = Vec3::new(
+                        theta.sin() * phi.cos(),
+                        theta.sin() * phi.sin(),
+                        theta.cos(),
+                    );
                     let rim = frame.to_world(local);
                     assert!(axis.dot(rim) >= cos - 1e-5, "{a:?} {b:?} -> {axis:?} {cos}");
                 }

@@ -34,7 +34,12 @@ pub(super) fn build(mut lights: Vec<(u32, LightBounds)>) -> Built {
 }
 
 /// Appends the subtree over `lights` and returns its bounds.
-fn subtree(lights: &mut [(u32, LightBounds)], depth: u32, trail: u64, out: &mut Built) -> LightBounds {
+fn subtree(
+    lights: &mut [(u32, LightBounds)],
+    depth: u32,
+    trail: u64,
+    out: &mut Built,
+) -> LightBounds {
     if let [(light, bounds)] = lights {
         out.nodes.push(Node {
             bounds: *bounds,
@@ -167,7 +172,10 @@ fn cheapest_split(
 
 /// Moves the lights for which `first` holds to the front, keeping the
 /// order within each side; returns how many there are.
-fn partition(lights: &mut [(u32, LightBounds)], first: &mut impl FnMut(&LightBounds) -> bool) -> usize {
+fn partition(
+    lights: &mut [(u32, LightBounds)],
+    first: &mut impl FnMut(&LightBounds) -> bool,
+) -> usize {
     let (front, back): (Vec<_>, Vec<_>) = lights.iter().partition(|(_, b)| first(b));
     let mid = front.len();
     for (slot, item) in lights.iter_mut().zip(front.into_iter().chain(back)) {

@@ -140,7 +140,10 @@ fn uniform_and_power_choices_follow_their_pmf() {
         }
         discrete_fit(&format!("{how:?} selection"), &counts, &pmf).assert_ok();
     }
-    assert_eq!(set.selector(LightSelection::Uniform).pmf(&ctx, 3), 1.0 / 50.0);
+    assert_eq!(
+        set.selector(LightSelection::Uniform).pmf(&ctx, 3),
+        1.0 / 50.0
+    );
 }
 
 /// A light whose every point lies below the receiver's horizon, or which

@@ -254,7 +254,11 @@ pub(crate) fn discrete_fit(name: &str, counts: &[u64], pmf: &[f64]) -> Chi2Outco
         runs <= TEST_COUNT,
         "{runs} chi-square runs: raise TEST_COUNT so the Šidák correction holds"
     );
-    assert_eq!(counts.len(), pmf.len() + 1, "one count per outcome plus failures");
+    assert_eq!(
+        counts.len(),
+        pmf.len() + 1,
+        "one count per outcome plus failures"
+    );
     let n: u64 = counts.iter().sum();
     let total: f64 = pmf.iter().sum();
     let mut expected: Vec<f64> = pmf.iter().map(|p| p * n as f64).collect();
