@@ -60,11 +60,11 @@ fn block_stats(scene: &Scene, how: LightSelection, spp: u32, seed: u64) -> Block
 fn tree_and_uniform_selection_agree_with_power_on_many_lights() {
     let scene = common::agreement_scenes::many_lights_hall();
     assert!(scene.lights.sampled_count() > 10_000);
-    let reference = block_stats(&scene, LightSelection::Power, 32, 1);
+    let reference = block_stats(&scene, LightSelection::Power, 16, 1);
     let others = [LightSelection::Bvh, LightSelection::Uniform];
     let mut failures = Vec::new();
     for (slot, how) in others.into_iter().enumerate() {
-        let stats = block_stats(&scene, how, 16, 100 + slot as u64);
+        let stats = block_stats(&scene, how, 8, 100 + slot as u64);
         let test = z_test(&stats, &reference, FALSE_ALARM / others.len() as f64).expect("sizes");
         let s = test.summary();
         eprintln!(

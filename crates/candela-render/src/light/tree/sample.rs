@@ -16,7 +16,7 @@ fn branch(nodes: &[Node], at: usize, ctx: &LightContext) -> Option<f32> {
     let i0 = nodes[at + 1].bounds.importance(ctx);
     let i1 = nodes[second].bounds.importance(ctx);
     let total = i0 + i1;
-    if !(total > 0.0) || !total.is_finite() {
+    if total.is_nan() || total <= 0.0 || total.is_infinite() {
         return None;
     }
     Some(i0 / total)
