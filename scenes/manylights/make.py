@@ -4,13 +4,16 @@ the light BVH"): a long hall lit by 10,240 small emissive triangles.
 
 - the ceiling: a 64 x 64 grid of small lamps facing down (8,192 triangles),
   in three colours and a spread of brightness;
-- both long walls: a 32 x 16 grid of tiny lamps each, facing into the hall
-  (2,048 triangles);
+- both long walls: a 32 x 16 grid of tiny lamps each, high up, facing into
+  the hall (2,048 triangles);
 - a few boxes on the floor (occluders), a grey floor, walls and ceiling.
 
 From any point only the lamps nearby and facing it matter, so choosing a
 lamp by distance and orientation (the light tree) beats choosing by power
-or uniformly. Output beside this script: manylights.xml (Mitsuba 3, with
+or uniformly. The camera looks down at the floor, the boxes and the lower
+walls and sees no lamp directly: the image is all lighting, none of it
+the pixel-coverage noise of tiny bright lamps, which no light selection
+changes. Output beside this script: manylights.xml (Mitsuba 3, with
 the camera) and the lamp meshes as binary PLY (quads; the loader fans
 them). Standard library only; deterministic.
 
@@ -71,7 +74,7 @@ def wall_lamps(side):
     for j in range(ny):
         for i in range(nz):
             z = -D + (i + 0.5) * D / nz
-            y = 0.3 + (j + 0.5) * (H - 0.6) / ny
+            y = 2.2 + (j + 0.5) * (H - 2.3) / ny
             a, b = (x, y - s, z - s), (x, y + s, z - s)
             c, d = (x, y + s, z + s), (x, y - s, z + s)
             # Normal -side * x: order so that (b - a) x (d - a) points inward.
@@ -114,7 +117,7 @@ def main():
         '<scene version="3.0.0">',
         '  <sensor type="perspective">',
         '    <float name="fov" value="60"/>',
-        '    <transform name="to_world"><lookat origin="0.5 1.6 -0.5" target="-0.3 1.1 -10" up="0, 1, 0"/></transform>',
+        '    <transform name="to_world"><lookat origin="0.3 1.7 -0.5" target="-0.2 0 -4.1" up="0, 1, 0"/></transform>',
         '    <film type="hdrfilm"><integer name="width" value="640"/><integer name="height" value="360"/></film>',
         '  </sensor>',
         '  <bsdf type="diffuse" id="grey"><rgb name="reflectance" value="0.6, 0.6, 0.6"/></bsdf>',
