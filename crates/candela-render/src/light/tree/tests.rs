@@ -279,8 +279,8 @@ fn lights_at_infinity_keep_their_power_probability() {
     discrete_fit("light tree with a sky", &counts, &pmf).assert_ok();
 }
 
-/// `auto` takes the tree only above [`AUTO_TREE_ABOVE`] sampled lights;
-/// the setting's help names the same threshold.
+/// `auto` takes the tree only above [`AUTO_TREE_ABOVE`] sampled lights
+/// (the setting's help, `LightSelection::Auto`, quotes the number).
 #[test]
 fn auto_takes_the_tree_only_for_many_lights() {
     let few = LightSet::new(scattered_lights(AUTO_TREE_ABOVE, 14), &[], 10.0);
