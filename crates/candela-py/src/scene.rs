@@ -179,7 +179,8 @@ impl PyScene {
     /// meanings as the CLI's long flags (`candela.settings_help()` lists
     /// them with their help): `spp`, `max_depth`, `light_samples`,
     /// `integrator` ("path", "normals", "direct", "indirect"), `lighting`
-    /// ("mis", "light", "hemisphere"), `accumulate`, `bounce` (only the light
+    /// ("mis", "light", "hemisphere"), `light_selection` ("auto", "uniform",
+    /// "power", "bvh"), `accumulate`, `bounce` (only the light
     /// after exactly that many bounces), `roulette`, `seed`,
     /// `sampler`, `width`, `height`, `cell=(x, y, w, h)`, `camera`,
     /// `aperture`, `focal_distance`, `env_map` (a file or "sky"), `adaptive`

@@ -11,7 +11,7 @@ use super::record::{HemisphereEvent, LightSampleEvent, PathRecorder};
 use super::ThreadContext;
 use crate::bsdf::Bsdf;
 use crate::geometry::{Frame, Ray};
-use crate::light::LightSample;
+use crate::light::{LightContext, LightSample, LightSelector};
 use crate::sampling::warp::{
     square_to_uniform_hemisphere, square_to_uniform_sphere, uniform_hemisphere_pdf,
     uniform_sphere_pdf,
@@ -92,8 +92,17 @@ pub fn direct_dimensions(scene: &Scene, mode: LightingMode, light_samples: u32) 
     }
 }
 
+/// Where lights are chosen for at `hit` (the choice and the MIS weight of an
+/// emitter found from there both read it): the point and its geometric
+/// normal on the viewer's side, two-sided when `bsdf` transmits (a BSDF
+/// without transmission reflects nothing from below that side, see
+/// `shading::scatter_allowed`).
+pub fn light_context(hit: &SurfaceHit, bsdf: &Bsdf) -> LightContext {
+    LightContext::surface(hit.p, hit.ng, bsdf.flags().is_transmission())
+}
+
 /// Direct radiance reflected toward `hit.wo`. Light sampling: `light_samples`
-/// samples of the non-delta lights (chosen by power) plus one sample of each
+/// samples of the non-delta lights (chosen by `selector`) plus one sample of each
 /// delta light, each weighted for MIS when `mode` is [`LightingMode::Mis`].
 /// Hemisphere mode: `light_samples` uniform hemisphere rays (CS184's `-H`
 /// with `-l`). Each sample goes to `rec`.
@@ -105,6 +114,7 @@ pub fn estimate_direct<R: PathRecorder>(
     bsdf: &Bsdf,
     mode: LightingMode,
     light_samples: u32,
+    selector: &LightSelector,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
     rec: &mut R,
@@ -134,11 +144,13 @@ pub fn estimate_direct<R: PathRecorder>(
     }
     let mut sum = Vec3::ZERO;
     let scale = 1.0 / light_samples as f32;
+    let receiver = light_context(hit, bsdf);
     for _ in 0..light_samples {
         let u_choose = sampler.next_1d();
         let u = sampler.next_2d();
-        let Some((index, pmf)) = lights.choose(u_choose) else {
-            break;
+        // None: no light can reach this point (the tree's bounds say so).
+        let Some((index, pmf)) = selector.choose(&receiver, u_choose) else {
+            continue;
         };
         let light = lights.get(index);
         let mis =

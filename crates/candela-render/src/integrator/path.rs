@@ -20,11 +20,14 @@
 //! traces the same paths as the full render: the views of disjoint ranges
 //! add up to it sample for sample.
 
-use super::direct::{bsdf_hit_weight, direct_dimensions, estimate_direct, LightingMode};
+use super::direct::{
+    bsdf_hit_weight, direct_dimensions, estimate_direct, light_context, LightingMode,
+};
 use super::record::{EmissionEvent, PathEnd, PathRecorder, ScatterEvent};
 use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::Bsdf;
 use crate::geometry::{Frame, Ray};
+use crate::light::{LightContext, LightSelection, LightSelector};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::shading::{sample_scatter, shading_frame, NoScatter};
@@ -44,6 +47,8 @@ pub struct PathSettings {
     pub light_samples: u32,
     /// Russian roulette from this bounce count on (`None`: never).
     pub roulette_from: Option<u32>,
+    /// How each light sample chooses its light.
+    pub light_selection: LightSelection,
 }
 
 impl Default for PathSettings {
@@ -53,6 +58,7 @@ impl Default for PathSettings {
             lighting: LightingMode::Mis,
             light_samples: 1,
             roulette_from: Some(3),
+            light_selection: LightSelection::default(),
         }
     }
 }
@@ -60,7 +66,8 @@ impl Default for PathSettings {
 /// Where the previous scattering event was, for MIS at the next emitter.
 #[derive(Clone, Copy)]
 struct PrevVertex {
-    p: Vec3,
+    /// Where its light samples chose their lights (its point among them).
+    receiver: LightContext,
     bsdf_pdf: f32,
     specular: bool,
 }
@@ -85,11 +92,12 @@ pub fn path_radiance<R: PathRecorder>(
     let mut ray = *camera_ray;
     let mut prev: Option<PrevVertex> = None;
     let mut depth = 0u32;
+    let selector = scene.lights.selector(settings.light_selection);
     let end = loop {
         let Some(hit) = scene.intersect_visible(&ray, &mut ctx.rays.traversal) else {
             rec.escape(depth, &ray, beta);
             if settings.bounces.contains(&depth) {
-                let term = beta * escaped_radiance(scene, &ray, prev, settings, rec);
+                let term = beta * escaped_radiance(scene, &selector, &ray, prev, settings, rec);
                 l += term;
                 rec.radiance_term(depth, term);
             }
@@ -102,7 +110,7 @@ pub fn path_radiance<R: PathRecorder>(
         }
         if settings.bounces.contains(&depth) && hit.front_face {
             if let Some(le) = material.emission_at(hit.uv) {
-                let mis_weight = emitter_weight(scene, &ray, &hit, prev, settings);
+                let mis_weight = emitter_weight(scene, &selector, &ray, &hit, prev, settings);
                 let term = beta * le * mis_weight;
                 l += term;
                 rec.radiance_term(depth, term);
@@ -124,7 +132,7 @@ pub fn path_radiance<R: PathRecorder>(
         if !bsdf.flags().is_specular() {
             let term = beta
                 * direct_at_vertex(
-                    scene, &hit, &frame, &bsdf, depth, settings, sampler, ctx, rec,
+                    scene, &hit, &frame, &bsdf, depth, settings, &selector, sampler, ctx, rec,
                 );
             l += term;
             rec.radiance_term(depth + 1, term);
@@ -149,7 +157,7 @@ pub fn path_radiance<R: PathRecorder>(
             eta_scale *= bsdf.refraction_eta2(frame.to_local(hit.wo));
         }
         prev = Some(PrevVertex {
-            p: hit.p,
+            receiver: light_context(&hit, &bsdf),
             bsdf_pdf: s.pdf,
             specular: s.flags.is_specular(),
         });
@@ -187,6 +195,7 @@ fn direct_at_vertex<R: PathRecorder>(
     bsdf: &Bsdf,
     depth: u32,
     settings: &PathSettings,
+    selector: &LightSelector,
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
     rec: &mut R,
@@ -204,6 +213,7 @@ fn direct_at_vertex<R: PathRecorder>(
         bsdf,
         settings.lighting,
         settings.light_samples,
+        selector,
         sampler,
         ctx,
         rec,
@@ -219,6 +229,7 @@ fn direct_at_vertex<R: PathRecorder>(
 /// MIS weight of emission found by the path itself (not by light sampling).
 fn emitter_weight(
     scene: &Scene,
+    selector: &LightSelector,
     ray: &Ray,
     hit: &SurfaceHit,
     prev: Option<PrevVertex>,
@@ -235,8 +246,9 @@ fn emitter_weight(
             let Some(index) = scene.lights.light_of_prim(hit.prim) else {
                 return 1.0;
             };
-            let light_pdf =
-                scene.lights.pmf(index) * scene.lights.pdf_li(index, prev.p, ray.dir, hit.p);
+            let from = prev.receiver.p;
+            let light_pdf = selector.pmf(&prev.receiver, index)
+                * scene.lights.pdf_li(index, from, ray.dir, hit.p);
             bsdf_hit_weight(prev.bsdf_pdf, light_pdf, settings.light_samples)
         }
     }
@@ -249,6 +261,7 @@ fn emitter_weight(
 /// vertex's direct estimate counted it), the power heuristic under MIS.
 fn escaped_radiance<R: PathRecorder>(
     scene: &Scene,
+    selector: &LightSelector,
     ray: &Ray,
     prev: Option<PrevVertex>,
     settings: &PathSettings,
@@ -266,8 +279,8 @@ fn escaped_radiance<R: PathRecorder>(
             Some(prev) => match settings.lighting {
                 LightingMode::Hemisphere | LightingMode::Light => 0.0,
                 LightingMode::Mis => {
-                    let light_pdf =
-                        scene.lights.pmf(index) * light.pdf_li(prev.p, ray.dir, Vec3::ZERO);
+                    let light_pdf = selector.pmf(&prev.receiver, index)
+                        * light.pdf_li(prev.receiver.p, ray.dir, Vec3::ZERO);
                     bsdf_hit_weight(prev.bsdf_pdf, light_pdf, settings.light_samples)
                 }
             },

@@ -18,6 +18,11 @@
 //! rays leaving them with [`Light::sample_le`] and [`Light::pdf_le`]
 //! (`emission.rs`), and choose the light with [`LightSet::choose_emitter`].
 //!
+//! Light samples choose among the non-delta lights through
+//! [`LightSet::selector`] (`select.rs`): uniformly, by power, or by the
+//! light tree (`tree/`), which weighs each light by a bound on what it can
+//! contribute at the shading point.
+//!
 //! Lights at infinity that rays can escape to (the ambient sky, the
 //! environment map) also answer [`Light::le`], the radiance an escaping ray
 //! sees, so the path tracer handles all of them in one place.
@@ -31,18 +36,22 @@ mod envmap;
 #[cfg(test)]
 mod envmap_tests;
 mod infinite;
+mod select;
 mod set;
 mod sky;
 #[cfg(test)]
 mod tests;
+mod tree;
 
 pub use area::{AreaLight, AreaShape, TexturedEmission};
 pub use delta::{DirectionalLight, PointLight, SpotLight};
 pub use emission::{LightEmission, SceneSphere};
 pub use envmap::{EnvironmentLight, EnvironmentMap, EnvironmentOptions};
 pub use infinite::AmbientLight;
+pub use select::{LightSelection, LightSelector, AUTO_TREE_ABOVE};
 pub use set::LightSet;
 pub use sky::ProceduralSky;
+pub use tree::{LightBounds, LightContext, LightTree};
 
 use glam::{Vec2, Vec3};
 

@@ -1,14 +1,18 @@
 //! All the lights of a scene, and how one is chosen for a light sample.
 
+use super::tree::LightTree;
 use super::{Light, LightSample};
 use crate::shape::{PrimKind, PrimRef};
 use glam::{Vec2, Vec3};
+use std::sync::OnceLock;
 
 const NONE: u32 = u32::MAX;
 
 /// The scene's lights. Delta lights are each sampled once per shading point
-/// (CS184: one sample per delta light); the others are chosen by power, so
-/// a lamp made of many triangles costs one sample, not one per triangle.
+/// (CS184: one sample per delta light); one of the others is chosen per
+/// light sample ([`LightSet::selector`]: uniformly, by power or by the
+/// light tree), so a lamp made of many triangles costs one sample, not one
+/// per triangle.
 #[derive(Clone, Debug, Default)]
 pub struct LightSet {
     lights: Vec<Light>,
@@ -29,6 +33,8 @@ pub struct LightSet {
     /// (delta lights included), and that probability per light.
     emit_cdf: Vec<f32>,
     emit_pmf: Vec<f32>,
+    /// The light tree, built when a selector first asks for it.
+    tree: OnceLock<LightTree>,
 }
 
 impl LightSet {
@@ -92,6 +98,7 @@ impl LightSet {
             prim_light: by_kind,
             emit_cdf,
             emit_pmf,
+            tree: OnceLock::new(),
         }
     }
 
@@ -120,8 +127,21 @@ impl LightSet {
         !self.sampled.is_empty()
     }
 
+    /// The number of non-delta lights (those a light sample chooses among).
+    pub fn sampled_count(&self) -> usize {
+        self.sampled.len()
+    }
+
+    /// The light tree over the non-delta lights, built on first use (its
+    /// power figures are the power selection's probabilities, so lights
+    /// the power choice never picks have no importance in the tree either).
+    pub fn tree(&self) -> &LightTree {
+        self.tree
+            .get_or_init(|| LightTree::new(&self.lights, &self.pmf))
+    }
+
     /// Chooses a non-delta light by power: (light index, probability).
-    pub fn choose(&self, u: f32) -> Option<(u32, f32)> {
+    pub(super) fn choose_by_power(&self, u: f32) -> Option<(u32, f32)> {
         if self.sampled.is_empty() {
             return None;
         }
@@ -133,9 +153,28 @@ impl LightSet {
         Some((i, self.pmf[i as usize]))
     }
 
-    /// Probability that [`LightSet::choose`] picks light `i`.
-    pub fn pmf(&self, i: u32) -> f32 {
+    /// Probability that [`LightSet::choose_by_power`] picks light `i`.
+    pub(super) fn power_pmf(&self, i: u32) -> f32 {
         self.pmf[i as usize]
+    }
+
+    /// Chooses a non-delta light, each equally likely.
+    pub(super) fn choose_uniformly(&self, u: f32) -> Option<(u32, f32)> {
+        let n = self.sampled.len();
+        if n == 0 {
+            return None;
+        }
+        let k = ((u * n as f32) as usize).min(n - 1);
+        Some((self.sampled[k], 1.0 / n as f32))
+    }
+
+    /// Probability that [`LightSet::choose_uniformly`] picks light `i`.
+    pub(super) fn uniform_pmf(&self, i: u32) -> f32 {
+        if self.lights[i as usize].is_delta() {
+            0.0
+        } else {
+            1.0 / self.sampled.len() as f32
+        }
     }
 
     /// Chooses the light a light subpath starts from: any light, delta
@@ -246,12 +285,12 @@ mod tests {
         });
         let set = LightSet::new(vec![sky(1.0), point, sky(3.0)], &[], 1.0);
         assert_eq!(set.delta_lights().count(), 1);
-        assert!((set.pmf(0) - 0.25).abs() < 1e-6);
-        assert_eq!(set.pmf(1), 0.0);
-        assert!((set.pmf(2) - 0.75).abs() < 1e-6);
+        assert!((set.power_pmf(0) - 0.25).abs() < 1e-6);
+        assert_eq!(set.power_pmf(1), 0.0);
+        assert!((set.power_pmf(2) - 0.75).abs() < 1e-6);
         let n = 1000;
         let picks_of_2 = (0..n)
-            .filter(|k| set.choose((*k as f32 + 0.5) / n as f32).unwrap().0 == 2)
+            .filter(|k| set.choose_by_power((*k as f32 + 0.5) / n as f32).unwrap().0 == 2)
             .count();
         assert_eq!(picks_of_2, 750);
     }

@@ -2,6 +2,7 @@
 
 use super::{check, SettingsError};
 use crate::integrator::{BidirSettings, LightingMode, PathSettings};
+use crate::light::LightSelection;
 use serde::{Deserialize, Serialize};
 use std::ops::RangeInclusive;
 
@@ -59,6 +60,14 @@ pub struct IntegratorSettings {
     #[cfg_attr(feature = "cli", arg(short = 'l', long, value_name = "N", default_value_t = IntegratorSettings::default().light_samples))]
     pub light_samples: u32,
 
+    /// How each light sample chooses among the non-delta lights: uniformly,
+    /// by power, or by the light tree (by what each light can contribute at
+    /// the shading point: power, distance, orientation); auto takes the
+    /// tree when the scene has more than 64 such lights, power otherwise.
+    /// Path tracing only (light tracing and BDPT start paths by power).
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = IntegratorSettings::default().light_selection))]
+    pub light_selection: LightSelection,
+
     /// 1: add the light of every bounce up to the maximum depth; 0: only
     /// light after exactly that many bounces (CS184 `-o`).
     #[cfg_attr(feature = "cli", arg(short = 'o', long, value_name = "0|1", action = clap::ArgAction::Set,
@@ -111,6 +120,7 @@ impl Default for IntegratorSettings {
             lighting: LightingMode::Mis,
             max_depth: 5,
             light_samples: 1,
+            light_selection: LightSelection::Auto,
             accumulate: true,
             bounce: None,
             bounce_layers: None,
@@ -161,6 +171,7 @@ impl IntegratorSettings {
             lighting: self.lighting,
             light_samples: self.light_samples,
             roulette_from: self.roulette.then_some(ROULETTE_FROM),
+            light_selection: self.light_selection,
         })
     }
 

@@ -175,3 +175,11 @@ pub fn textured_lamp_through_a_cut_out_screen() -> Scene {
     assert_eq!(scene.lights.lights().len(), 2, "two emissive triangles");
     scene
 }
+
+/// The many-lights hall (`scenes/manylights/`, 10,240 emitting triangles)
+/// through its own camera.
+pub fn many_lights_hall() -> Scene {
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/manylights/manylights.xml");
+    build(&load_file(path), &options(CameraMode::File))
+}

@@ -243,6 +243,40 @@ impl Chi2Test {
     }
 }
 
+/// The chi-square test of a discrete choice: `counts[i]` draws of outcome
+/// `i` (the last entry counting failed draws) against the probabilities
+/// `pmf` of the outcomes (failures expect the missing mass `1 − Σ pmf`).
+/// Counts toward [`TEST_COUNT`] like [`Chi2Test::run`]; the outcome's
+/// `pdf_integral` is `Σ pmf`.
+pub(crate) fn discrete_fit(name: &str, counts: &[u64], pmf: &[f64]) -> Chi2Outcome {
+    let runs = RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+    assert!(
+        runs <= TEST_COUNT,
+        "{runs} chi-square runs: raise TEST_COUNT so the Šidák correction holds"
+    );
+    assert_eq!(
+        counts.len(),
+        pmf.len() + 1,
+        "one count per outcome plus failures"
+    );
+    let n: u64 = counts.iter().sum();
+    let total: f64 = pmf.iter().sum();
+    let mut expected: Vec<f64> = pmf.iter().map(|p| p * n as f64).collect();
+    expected.push((1.0 - total).max(0.0) * n as f64);
+    let observed: Vec<f64> = counts.iter().map(|&c| c as f64).collect();
+    let (statistic, dof) = pearson_pooled(&observed, &expected);
+    Chi2Outcome {
+        name: name.to_string(),
+        statistic,
+        dof,
+        p_value: chi2_p_value(statistic, dof),
+        threshold: 1.0 - (1.0 - SIGNIFICANCE).powf(1.0 / TEST_COUNT as f64),
+        pdf_integral: total,
+        failure_fraction: counts[pmf.len()] as f64 / n.max(1) as f64,
+        worst_pdf_mismatch: 0.0,
+    }
+}
+
 /// Pearson's statistic with cells expecting fewer than 5 samples pooled into
 /// one bin (merged into the smallest regular bin if the pool is still too
 /// small). Returns the statistic and the degrees of freedom.
