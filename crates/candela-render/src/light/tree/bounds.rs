@@ -1,15 +1,10 @@
 //! The bounds of a group of lights (a box, a cone of normals, an emission
-//! spread and a power) and the importance they bound at a receiving point
-//! (Conty Estevez and Kulla 2018, "Importance Sampling of Many Lights with
-//! Adaptive Tree Splitting", §4.1-4.3; pbrt-v4's `LightBounds`).
-//!
-//! Every bound here is conservative: the importance of a group is zero only
-//! when no light of the group can send light to the point (every point of
-//! the box is seen outside the emission cone, or below the receiver's
-//! horizon), so a light that can contribute always keeps a positive
-//! probability and the estimator stays unbiased.
+//! spread and a power), built and merged here (Conty Estevez and Kulla
+//! 2018, "Importance Sampling of Many Lights with Adaptive Tree
+//! Splitting", §4.1-4.4; pbrt-v4's `LightBounds`). The importance they
+//! bound at a receiving point is in `importance.rs`, evaluated from the
+//! precomputed form the walk reads.
 
-use super::LightContext;
 use glam::{Quat, Vec3};
 use std::f32::consts::PI;
 
@@ -33,28 +28,6 @@ pub struct LightBounds {
     pub cos_e: f32,
     /// Emitted power (the figure power selection uses).
     pub phi: f32,
-}
-
-/// cos(max(0, a − b)) from the sines and cosines of two angles in [0, π].
-fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        1.0
-    } else {
-        cos_a * cos_b + sin_a * sin_b
-    }
-}
-
-/// sin(max(0, a − b)), as [`cos_sub_clamped`].
-fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        0.0
-    } else {
-        sin_a * cos_b - cos_a * sin_b
-    }
-}
-
-fn sin_of(cos: f32) -> f32 {
-    (1.0 - cos * cos).max(0.0).sqrt()
 }
 
 impl LightBounds {
@@ -126,85 +99,6 @@ impl LightBounds {
                 * PI
                 * (2.0 * theta_w * sin_o - (theta_o - 2.0 * theta_w).cos() - 2.0 * theta_o * sin_o
                     + self.cos_o)
-    }
-
-    /// The importance of the group at `ctx`: power over squared distance
-    /// (the distance at least half the box's diagonal, so that a point
-    /// inside or near the box does not blow it up), times the cosine of
-    /// the smallest angle any emitter in the box can make with the
-    /// direction to the point, times the cosine of the smallest angle any
-    /// point of the box can make with the receiver's normal (no such term
-    /// without a normal). Zero only where no emitter of the group can
-    /// reach the point (see the module docs).
-    pub fn importance(&self, ctx: &LightContext) -> f32 {
-        if self.behind(ctx) {
-            return 0.0;
-        }
-        let center = self.centroid();
-        let to_p = ctx.p - center;
-        let d2 = to_p.length_squared();
-        let half_diagonal2 = 0.25 * (self.hi - self.lo).length_squared();
-        // The directions from the point to the box lie within θb of the
-        // direction to its centre (the bounding sphere's cone); a point
-        // inside that sphere may see the box in any direction.
-        let (sin_b, cos_b) = if d2 <= half_diagonal2 {
-            (0.0, -1.0)
-        } else {
-            let sin2 = half_diagonal2 / d2;
-            (sin2.sqrt(), (1.0 - sin2).max(0.0).sqrt())
-        };
-        let wi = if d2 > 0.0 {
-            to_p / d2.sqrt()
-        } else {
-            Vec3::ZERO
-        };
-        // Smallest angle between an emitter's normal and the direction to
-        // the point: θ' = max(0, θw − θo − θb).
-        let cos_w = self.axis.dot(wi).clamp(-1.0, 1.0);
-        let sin_w = sin_of(cos_w);
-        let sin_o = sin_of(self.cos_o);
-        let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, self.cos_o);
-        let sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, self.cos_o);
-        let cos_emit = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-        if cos_emit <= self.cos_e {
-            return 0.0;
-        }
-        let mut importance = self.phi * cos_emit / d2.max(half_diagonal2);
-        if ctx.n != Vec3::ZERO {
-            // Smallest angle between the receiver's normal and a direction
-            // toward the box (either side of the surface when it transmits).
-            let cos_i = if ctx.two_sided {
-                ctx.n.dot(wi).abs()
-            } else {
-                -ctx.n.dot(wi)
-            }
-            .clamp(-1.0, 1.0);
-            let cos_receive = cos_sub_clamped(sin_of(cos_i), cos_i, sin_b, cos_b);
-            if cos_receive <= 0.0 && !ctx.two_sided {
-                return 0.0;
-            }
-            importance *= cos_receive.max(0.0);
-        }
-        importance.max(0.0)
-    }
-}
-
-impl LightBounds {
-    /// Exact half-space tests on the box, tighter than the cones of its
-    /// bounding sphere that [`LightBounds::importance`] uses: the whole box
-    /// lies below a one-sided receiver's horizon, or (for emitters that
-    /// all share the normal `axis`, such as a grid of lamps) the point lies
-    /// behind every emitter's plane. Cutting such groups at the parent
-    /// keeps the walk from entering nodes whose children are all dark.
-    fn behind(&self, ctx: &LightContext) -> bool {
-        let center = self.centroid();
-        let half = 0.5 * (self.hi - self.lo);
-        // max over the box of v · (q − p) = v · (c − p) + |v| · half.
-        let reach = |v: Vec3| v.dot(center - ctx.p) + v.abs().dot(half);
-        let below_horizon = !ctx.two_sided && ctx.n != Vec3::ZERO && reach(ctx.n) <= 0.0;
-        // Emits toward p from q only if axis · (p − q) > 0.
-        let behind_emitters = self.cos_o >= 1.0 && reach(-self.axis) <= 0.0;
-        below_horizon || behind_emitters
     }
 }
 

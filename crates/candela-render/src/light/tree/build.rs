@@ -4,6 +4,7 @@
 //! splitting a box across its short side; pbrt-v4's `EvaluateCost`).
 
 use super::bounds::LightBounds;
+use super::importance::NodeBounds;
 use super::Node;
 
 /// Buckets per axis when looking for the cheapest split.
@@ -42,7 +43,7 @@ fn subtree(
 ) -> LightBounds {
     if let [(light, bounds)] = lights {
         out.nodes.push(Node {
-            bounds: *bounds,
+            bounds: NodeBounds::new(bounds),
             second_or_light: *light,
             leaf: true,
         });
@@ -51,7 +52,7 @@ fn subtree(
     }
     let at = out.nodes.len();
     out.nodes.push(Node {
-        bounds: lights[0].1,
+        bounds: NodeBounds::new(&lights[0].1),
         second_or_light: 0,
         leaf: false,
     });
@@ -64,7 +65,7 @@ fn subtree(
     // light below (the zero-importance test stays conservative).
     let bounds = b0.union(&b1);
     out.nodes[at] = Node {
-        bounds,
+        bounds: NodeBounds::new(&bounds),
         second_or_light: second_index,
         leaf: false,
     };

@@ -19,10 +19,14 @@
 //! probability power selection gives it; the tree shares the rest.
 //!
 //! Files: `bounds.rs` (the bounds and their importance), `build.rs` (the
-//! cost-driven build), `sample.rs` (choosing and the pmf).
+//! cost-driven build), `importance.rs` (the bounds as the walk reads them,
+//! and their importance, cheaply), `sample.rs` (choosing and the pmf).
 
 mod bounds;
 mod build;
+mod importance;
+#[cfg(test)]
+mod reference;
 mod sample;
 #[cfg(test)]
 mod tests;
@@ -69,11 +73,11 @@ impl LightContext {
     }
 }
 
-/// A node: its bounds, and its second child (the first follows it) or,
-/// for a leaf, its light.
+/// A node: its bounds (in the form the walk reads), and its second child
+/// (the first follows it) or, for a leaf, its light.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    bounds: LightBounds,
+    bounds: importance::NodeBounds,
     second_or_light: u32,
     leaf: bool,
 }
