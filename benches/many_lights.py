@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
-"""Light selection at equal error on the many-lights hall
-(scenes/manylights/, BENCHMARKS.md "Many lights: the light BVH").
+"""Light selection at equal error on the many-lights scenes
+(scenes/manylights/: the hall, or --scene .../city.xml; BENCHMARKS.md
+"Many lights: the light BVH").
 
     many_lights.py [--candela target/release/candela] [--spp 16] [--runs 2]
+                   [--scene scenes/manylights/city.xml] [--workdir DIR]
+
+Use one --workdir per scene (the reference parts are kept there).
 
 1. A reference: --ref-parts renders of --ref-spp samples each (seeds 1000,
    1001, ...; light tree selection, any unbiased strategy would do), added
@@ -59,6 +63,8 @@ def main():
     ap.add_argument("--size", default="320 180")
     ap.add_argument("--depth", type=int, default=3)
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--scene", default=str(SCENE),
+                    help="scenes/manylights/manylights.xml (the hall) or city.xml")
     ap.add_argument("--workdir", default="/tmp/many_lights")
     a = ap.parse_args()
     work = Path(a.workdir)
@@ -67,7 +73,7 @@ def main():
     def cmd(strategy, spp, seed, out):
         return [a.candela, "-q", "-t", str(a.threads), "-s", str(spp), "--seed", str(seed),
                 "-m", str(a.depth), "-r", *a.size.split(), "--camera", "file",
-                "--light-selection", strategy, "-f", str(out), str(SCENE)]
+                "--light-selection", strategy, "-f", str(out), a.scene]
 
     parts = [work / f"ref.{k}.exr" for k in range(a.ref_parts)]
     for k, part in enumerate(parts):

@@ -1,6 +1,10 @@
 #!/usr/bin/env python3
-"""Writes the many-lights benchmark scene (BENCHMARKS.md, "Many lights:
-the light BVH"): a long hall lit by 10,240 small emissive triangles.
+"""Writes the many-lights benchmark scenes (BENCHMARKS.md, "Many lights:
+the light BVH"): a long hall lit by 10,240 small emissive triangles
+(manylights.xml), and a city block at night lit by about 11,000 string
+lights over its streets (city.xml, see `city()`).
+
+The hall:
 
 - the ceiling: a 64 x 64 grid of small lamps facing down (8,192 triangles),
   in three colours and a spread of brightness;
@@ -27,13 +31,14 @@ W, H, D = 8.0, 3.0, 16.0  # hall: x in [-W/2, W/2], y in [0, H], z in [-D, 0]
 
 
 def write_ply(path, quads):
-    """Binary little-endian PLY of quads (each 4 corners, counter-clockwise
-    seen from the emitting side)."""
+    """Binary little-endian PLY of quads or triangles (each 4 or 3 corners,
+    counter-clockwise seen from the emitting side)."""
+    n = len(quads[0])
     header = "\n".join([
         "ply",
         "format binary_little_endian 1.0",
         "comment written by scenes/manylights/make.py",
-        f"element vertex {4 * len(quads)}",
+        f"element vertex {n * len(quads)}",
         "property float x",
         "property float y",
         "property float z",
@@ -47,7 +52,7 @@ def write_ply(path, quads):
             for p in q:
                 fh.write(struct.pack("<3f", *p))
         for k in range(len(quads)):
-            fh.write(struct.pack("<B4i", 4, 4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3))
+            fh.write(struct.pack(f"<B{n}i", n, *range(n * k, n * k + n)))
 
 
 def ceiling_lamps():
@@ -95,7 +100,7 @@ def rect(name, transform, material):
             f'      <ref id="{material}"/>\n    </shape>\n')
 
 
-def main():
+def hall():
     lamps = {}
     for k, quads in enumerate(ceiling_lamps()):
         lamps[f"ceiling{k}"] = quads
@@ -149,7 +154,105 @@ def main():
     xml.append("</scene>\n")
     with open(os.path.join(HERE, "manylights.xml"), "w") as fh:
         fh.write("\n".join(xml))
-    print(f"{triangles} emissive triangles")
+    print(f"manylights.xml: {triangles} emissive triangles")
+
+
+CITY = 64.0     # the city: x and z in [-CITY/2, CITY/2]
+PITCH = 8.0     # one block per PITCH x PITCH cell: a building and its streets
+FOOTPRINT = 5.0  # building side; streets are PITCH - FOOTPRINT = 3 m wide
+LAMP_PITCH = 0.45  # jittered grid of string lights over the streets
+
+
+def city_buildings():
+    """(centre x, centre z, half side, height): one per block, 3 to 15 m
+    tall, a deterministic spread."""
+    n = int(CITY / PITCH)
+    out = []
+    for j in range(n):
+        for i in range(n):
+            cx = -CITY / 2 + (i + 0.5) * PITCH
+            cz = -CITY / 2 + (j + 0.5) * PITCH
+            height = 3.0 + ((i * 37 + j * 91 + i * j * 11) % 13)
+            out.append((cx, cz, FOOTPRINT / 2, height))
+    return out
+
+
+def city_lamps():
+    """Small triangles facing down, 2 to 3 m above the streets on a jittered
+    grid (none over a roof), in three colour groups; each lamp's size, and
+    so its power, spreads over a factor of 4."""
+    groups = [[], [], []]
+    n = int(CITY / LAMP_PITCH)
+    state = 12345
+
+    def rand():  # a small LCG: deterministic without the random module
+        nonlocal state
+        state = (state * 1103515245 + 12345) % (1 << 31)
+        return state / (1 << 31)
+
+    for j in range(n):
+        for i in range(n):
+            x = -CITY / 2 + (i + rand()) * LAMP_PITCH
+            z = -CITY / 2 + (j + rand()) * LAMP_PITCH
+            y = 2.0 + rand()
+            s = 0.03 * (1.0 + 3.0 * rand()) ** 0.5
+            cell = lambda v: (v + CITY / 2) % PITCH - PITCH / 2
+            if abs(cell(x)) < FOOTPRINT / 2 + 0.2 and abs(cell(z)) < FOOTPRINT / 2 + 0.2:
+                continue
+            # Seen from below (normal -y): counter-clockwise in x-z.
+            tri = [(x - s, y, z - s), (x + s, y, z - s), (x, y, z + s)]
+            groups[int(3 * rand()) % 3].append(tri)
+    return groups
+
+
+def city():
+    """The city block at night: a 64 x 64 m ground, an 8 x 8 grid of
+    buildings 3 to 15 m tall with 3 m streets between them, and about
+    11,000 string lights (small triangles facing down, 2-3 m up) over the
+    streets. Each point of a street is lit by the lamps within a few metres
+    (a lamp h above the ground facing down gives irradiance in proportion
+    to h^2 / d^4 at distance d), and the buildings hide the other
+    streets, so almost all of the 11,000 lamps are dark at any given
+    point: the case a light tree is for, unlike the hall, where every lamp
+    of the ceiling reaches most of the floor. The camera looks down the
+    streets from above the roofs; it sees the lamps' dark backs only."""
+    groups = city_lamps()
+    colours = ["60, 40, 20", "30, 40, 60", "50, 50, 50"]
+    for k, tris in enumerate(groups):
+        write_ply(os.path.join(HERE, f"city_lamps{k}.ply"), tris)
+    count = sum(len(g) for g in groups)
+    xml = [
+        '<?xml version="1.0" encoding="utf-8"?>',
+        f"<!-- A city block at night: {count} emissive triangles. Written by make.py. -->",
+        '<scene version="3.0.0">',
+        '  <sensor type="perspective">',
+        '    <float name="fov" value="50"/>',
+        '    <transform name="to_world"><lookat origin="-14 24 30" target="2 0 2" up="0, 1, 0"/></transform>',
+        '    <film type="hdrfilm"><integer name="width" value="640"/><integer name="height" value="360"/></film>',
+        '  </sensor>',
+        '  <bsdf type="diffuse" id="grey"><rgb name="reflectance" value="0.5, 0.5, 0.5"/></bsdf>',
+        '  <bsdf type="diffuse" id="black"><rgb name="reflectance" value="0"/></bsdf>',
+    ]
+    body = rect("ground", f'<scale value="{CITY / 2} {CITY / 2} 1"/><rotate x="1" angle="-90"/>',
+                "grey")
+    for cx, cz, half, height in city_buildings():
+        body += box(cx, cz, half, height / 2, half)
+    for k, rgb in enumerate(colours):
+        body += (f'    <shape type="ply" id="city_lamps{k}">\n'
+                 f'      <string name="filename" value="city_lamps{k}.ply"/>\n'
+                 f'      <ref id="black"/>\n'
+                 f'      <emitter type="area"><rgb name="radiance" value="{rgb}"/></emitter>\n'
+                 f'    </shape>\n')
+    xml.append(body.rstrip("\n"))
+    xml.append("</scene>\n")
+    with open(os.path.join(HERE, "city.xml"), "w") as fh:
+        fh.write("\n".join(xml))
+    print(f"city.xml: {count} emissive triangles")
+
+
+def main():
+    hall()
+    city()
 
 
 if __name__ == "__main__":
