@@ -4,32 +4,30 @@
 //! splitting a box across its short side; pbrt-v4's `EvaluateCost`).
 
 use super::bounds::LightBounds;
-use super::importance::NodeBounds;
 use super::Node;
 
 /// Buckets per axis when looking for the cheapest split.
 const BUCKETS: usize = 12;
 
 /// From this depth on, splits halve the lights by count, so that no trail
-/// of branch bits (one per level, in a `u64`) can overflow: depth stays
+/// of branch choices (two bits per level of the 4-wide tree, which takes
+/// two levels of this one at a time, in a `u64`) can overflow: depth stays
 /// below 40 + log2(lights).
 const BALANCED_FROM_DEPTH: u32 = 40;
 
-/// The tree's nodes (depth first: a node's first child follows it) and
-/// each light's trail of branch bits (bit k set: second child at depth k).
+/// The binary tree's nodes (depth first: a node's first child follows it),
+/// which `wide.rs` collapses into the 4-wide tree the walk reads.
 pub(super) struct Built {
     pub nodes: Vec<Node>,
-    pub trails: Vec<(u32, u64)>,
 }
 
 /// Builds the tree over `lights` (light index, bounds); at least one.
 pub(super) fn build(mut lights: Vec<(u32, LightBounds)>) -> Built {
     let mut built = Built {
         nodes: Vec::with_capacity(2 * lights.len()),
-        trails: Vec::with_capacity(lights.len()),
     };
     if !lights.is_empty() {
-        subtree(&mut lights, 0, 0, &mut built);
+        subtree(&mut lights, 0, &mut built);
     }
     built
 }
@@ -38,34 +36,32 @@ pub(super) fn build(mut lights: Vec<(u32, LightBounds)>) -> Built {
 fn subtree(
     lights: &mut [(u32, LightBounds)],
     depth: u32,
-    trail: u64,
     out: &mut Built,
 ) -> LightBounds {
     if let [(light, bounds)] = lights {
         out.nodes.push(Node {
-            bounds: NodeBounds::new(bounds),
+            bounds: *bounds,
             second_or_light: *light,
             leaf: true,
         });
-        out.trails.push((*light, trail));
         return *bounds;
     }
     let at = out.nodes.len();
     out.nodes.push(Node {
-        bounds: NodeBounds::new(&lights[0].1),
+        bounds: lights[0].1,
         second_or_light: 0,
         leaf: false,
     });
     let mid = split(lights, depth);
     let (first, second) = lights.split_at_mut(mid);
-    let b0 = subtree(first, depth + 1, trail, out);
+    let b0 = subtree(first, depth + 1, out);
     let second_index = out.nodes.len() as u32;
-    let b1 = subtree(second, depth + 1, trail | (1u64 << depth), out);
+    let b1 = subtree(second, depth + 1, out);
     // The parent's bounds are its children's union, so they hold every
     // light below (the zero-importance test stays conservative).
     let bounds = b0.union(&b1);
     out.nodes[at] = Node {
-        bounds: NodeBounds::new(&bounds),
+        bounds,
         second_or_light: second_index,
         leaf: false,
     };

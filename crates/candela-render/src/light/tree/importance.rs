@@ -1,7 +1,7 @@
-//! What the walk needs of a node, precomputed once at build time
-//! ([`NodeBounds`]), and the importance the group's bounds allow at a
-//! receiving point, evaluated with as few square roots and divisions as
-//! the bound permits (Conty Estevez and Kulla 2018, "Importance Sampling
+//! What the walk needs of a node's four children, precomputed once at
+//! build time and laid out lane by lane ([`Bounds4`]), and the importance
+//! each child's bounds allow at a receiving point, evaluated for the four
+//! at once with 4-lane arithmetic (Conty Estevez and Kulla 2018, "Importance Sampling
 //! of Many Lights with Adaptive Tree Splitting", §4.1-4.3; pbrt-v4's
 //! `LightBounds::Importance`).
 //!
@@ -18,140 +18,142 @@
 //! positive probability and the estimator stays unbiased. `reference.rs`
 //! (tests only) holds the bound written plainly, which this must match.
 //!
-//! The walk evaluates two importances per level for every light sample and
+//! The walk evaluates one such pass per level for every light sample and
 //! for the MIS pmf of every emitter a BSDF sample finds, so this is the
-//! tree's inner loop. The bound is the same as the paper's; only the
-//! arithmetic is arranged to skip work: the box's centre, its bounding
-//! sphere's radius and sin θo are stored; the distance costs one reciprocal
-//! square root; sin θb is that radius times it; and the sines of the
-//! emitter and receiver angles (a square root each) are computed only when
-//! the angle subtraction needs them (the angle is wider than θb).
-
+//! tree's inner loop: the boxes' centres, their bounding spheres' radii and
+//! sin θo are stored, the distance costs one square root and one
+//! reciprocal, and the branches of the bound become lane selects.
 use super::{LightBounds, LightContext};
-use glam::Vec3;
+use glam::{BVec4A, Vec3, Vec4};
 
-/// A node's bounds as the importance reads them.
+/// Up to four groups' bounds, one per lane (unused lanes: zero power).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct NodeBounds {
-    /// Centre of the box.
-    center: Vec3,
-    /// Radius² of the box's bounding sphere (half the diagonal, squared).
-    radius2: f32,
-    /// Half the box's extent per axis (for the half-space tests).
-    half: Vec3,
-    /// Radius of the bounding sphere.
-    radius: f32,
-    /// Unit axis of the cone of normals.
-    axis: Vec3,
-    /// cos θo and sin θo of the cone of normals.
-    cos_o: f32,
-    sin_o: f32,
+pub(super) struct Bounds4 {
+    /// Centres of the boxes.
+    center: [Vec4; 3],
+    /// Half the boxes' extents per axis (for the half-space tests).
+    half: [Vec4; 3],
+    /// Unit axes of the cones of normals.
+    axis: [Vec4; 3],
+    /// Radius² and radius of the boxes' bounding spheres.
+    radius2: Vec4,
+    radius: Vec4,
+    /// cos θo and sin θo of the cones of normals.
+    cos_o: Vec4,
+    sin_o: Vec4,
     /// cos θe, the emission spread.
-    cos_e: f32,
-    /// Power.
-    phi: f32,
+    cos_e: Vec4,
+    /// Powers.
+    phi: Vec4,
 }
 
-/// cos(max(0, a − b)) from the cosines of two angles in [0, π] and their
-/// sines, the sine of `a` computed only when needed.
-#[inline(always)]
-fn cos_sub_clamped(cos_a: f32, sin_a: impl FnOnce() -> f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        1.0
-    } else {
-        cos_a * cos_b + sin_a() * sin_b
-    }
+fn sin_of(cos: Vec4) -> Vec4 {
+    (Vec4::ONE - cos * cos).max(Vec4::ZERO).sqrt()
 }
 
-#[inline(always)]
-fn sin_of(cos: f32) -> f32 {
-    (1.0 - cos * cos).max(0.0).sqrt()
+/// cos(max(0, a − b)) lane by lane, from the angles' cosines and sines.
+fn cos_sub_clamped(cos_a: Vec4, sin_a: Vec4, cos_b: Vec4, sin_b: Vec4) -> Vec4 {
+    Vec4::select(cos_a.cmpgt(cos_b), Vec4::ONE, cos_a * cos_b + sin_a * sin_b)
 }
 
-impl NodeBounds {
-    /// The precomputed form of `b`.
-    pub(super) fn new(b: &LightBounds) -> Self {
-        let half = 0.5 * (b.hi - b.lo);
-        let radius2 = half.length_squared();
-        Self {
-            center: b.centroid(),
-            radius2,
-            half,
-            radius: radius2.sqrt(),
-            axis: b.axis,
-            cos_o: b.cos_o,
-            sin_o: sin_of(b.cos_o),
-            cos_e: b.cos_e,
-            phi: b.phi,
-        }
-    }
+fn dot3(a: &[Vec4; 3], b: &[Vec4; 3]) -> Vec4 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
 
-    /// The importance of the group at `ctx` (the module docs).
-    #[inline]
-    pub(super) fn importance(&self, ctx: &LightContext) -> f32 {
-        let to_p = ctx.p - self.center;
-        if self.behind(ctx, to_p) {
-            return 0.0;
-        }
-        let d2 = to_p.length_squared();
-        if d2 <= self.radius2 {
-            // Inside the bounding sphere every direction is possible: both
-            // cosine bounds are 1 and the distance is clamped to the radius.
-            return if self.cos_e < 1.0 {
-                self.phi / self.radius2
-            } else {
-                0.0
-            };
-        }
-        let inv_d = d2.sqrt().recip();
-        let wi = to_p * inv_d;
-        // The directions to the box lie within θb of -wi.
-        let sin_b = (self.radius * inv_d).min(1.0);
-        let cos_b = (1.0 - sin_b * sin_b).max(0.0).sqrt();
-        // θx = max(0, θw − θo), then θ' = max(0, θx − θb).
-        let cos_w = self.axis.dot(wi).clamp(-1.0, 1.0);
-        let cos_emit = if cos_w > self.cos_o {
-            1.0
-        } else if self.cos_o >= 1.0 {
-            // One orientation (a flat group): θx = θw.
-            cos_sub_clamped(cos_w, || sin_of(cos_w), sin_b, cos_b)
-        } else {
-            let sin_w = sin_of(cos_w);
-            let cos_x = cos_w * self.cos_o + sin_w * self.sin_o;
-            let sin_x = sin_w * self.cos_o - cos_w * self.sin_o;
-            cos_sub_clamped(cos_x, || sin_x, sin_b, cos_b)
+impl Bounds4 {
+    /// The lanes of `groups` (at most four).
+    pub(super) fn new(groups: &[LightBounds]) -> Self {
+        assert!(groups.len() <= 4, "a wide node holds at most four children");
+        let lane = |f: &dyn Fn(&LightBounds) -> f32, unused: f32| {
+            let mut v = [unused; 4];
+            for (slot, g) in v.iter_mut().zip(groups) {
+                *slot = f(g);
+            }
+            Vec4::from_array(v)
         };
-        if cos_emit <= self.cos_e {
-            return 0.0;
+        let vec = |f: &dyn Fn(&LightBounds) -> Vec3| {
+            [0, 1, 2].map(|k| lane(&|g| f(g)[k], 0.0))
+        };
+        let half = |g: &LightBounds| 0.5 * (g.hi - g.lo);
+        let radius2 = lane(&|g| half(g).length_squared(), 1.0);
+        let cos_o = lane(&|g| g.cos_o, 1.0);
+        Self {
+            center: vec(&|g| g.centroid()),
+            half: vec(&half),
+            axis: vec(&|g| g.axis),
+            radius2,
+            radius: radius2.sqrt(),
+            cos_o,
+            sin_o: sin_of(cos_o),
+            cos_e: lane(&|g| g.cos_e, 0.0),
+            phi: lane(&|g| g.phi, 0.0),
         }
-        let mut importance = self.phi * cos_emit / d2;
-        if ctx.n != Vec3::ZERO {
-            let cos_i = if ctx.two_sided {
-                ctx.n.dot(wi).abs()
-            } else {
-                -ctx.n.dot(wi)
-            }
-            .clamp(-1.0, 1.0);
-            let cos_receive = cos_sub_clamped(cos_i, || sin_of(cos_i), sin_b, cos_b);
-            if cos_receive <= 0.0 && !ctx.two_sided {
-                return 0.0;
-            }
-            importance *= cos_receive.max(0.0);
-        }
-        importance.max(0.0)
     }
 
-    /// Exact half-space tests on the box, tighter than the cones of its
-    /// bounding sphere: the box lies wholly
-    /// below a one-sided receiver's horizon, or the point lies behind every
-    /// emitter's plane of a group with one orientation. `to_p` is the point
-    /// minus the centre.
-    #[inline(always)]
-    fn behind(&self, ctx: &LightContext, to_p: Vec3) -> bool {
-        // max over the box of v · (q − p) = −v · (p − c) + |v| · half.
-        let reach = |v: Vec3| v.abs().dot(self.half) - v.dot(to_p);
-        let below_horizon = !ctx.two_sided && ctx.n != Vec3::ZERO && reach(ctx.n) <= 0.0;
-        let behind_emitters = self.cos_o >= 1.0 && reach(-self.axis) <= 0.0;
-        below_horizon || behind_emitters
+    /// The importance of each lane's group at `ctx` (the module docs).
+    #[inline]
+    pub(super) fn importance(&self, ctx: &LightContext) -> [f32; 4] {
+        let to_p = [
+            Vec4::splat(ctx.p.x) - self.center[0],
+            Vec4::splat(ctx.p.y) - self.center[1],
+            Vec4::splat(ctx.p.z) - self.center[2],
+        ];
+        let has_normal = ctx.n != Vec3::ZERO;
+        let n = [ctx.n.x, ctx.n.y, ctx.n.z].map(Vec4::splat);
+        let n_abs = [ctx.n.x.abs(), ctx.n.y.abs(), ctx.n.z.abs()].map(Vec4::splat);
+        let axis_abs = self.axis.map(Vec4::abs);
+        // Exact half-space tests on the boxes, tighter than the cones of
+        // their bounding spheres: the box lies wholly below a one-sided
+        // receiver's horizon, or the point lies behind every emitter's
+        // plane of a group with one orientation. max over the box of
+        // v · (q − p) = |v| · half − v · (p − c).
+        let n_dot = dot3(&n, &to_p);
+        let mut dark = if !ctx.two_sided && has_normal {
+            (dot3(&n_abs, &self.half) - n_dot).cmple(Vec4::ZERO)
+        } else {
+            BVec4A::FALSE
+        };
+        let axis_dot = dot3(&self.axis, &to_p);
+        dark |= self.cos_o.cmpge(Vec4::ONE) & (dot3(&axis_abs, &self.half) + axis_dot).cmple(Vec4::ZERO);
+
+        let d2 = dot3(&to_p, &to_p);
+        // Inside the bounding sphere every direction is possible: both
+        // cosine bounds are 1 and the distance is clamped to the radius.
+        let inside = d2.cmple(self.radius2);
+        let inside_value = Vec4::select(
+            self.cos_e.cmplt(Vec4::ONE),
+            self.phi / self.radius2,
+            Vec4::ZERO,
+        );
+
+        let inv_d = d2.sqrt().recip();
+        // The directions to the box lie within θb of the direction from
+        // its centre to the point.
+        let sin_b = (self.radius * inv_d).min(Vec4::ONE);
+        let cos_b = sin_of(sin_b);
+        // θx = max(0, θw − θo), then θ' = max(0, θx − θb).
+        let cos_w = (axis_dot * inv_d).clamp(-Vec4::ONE, Vec4::ONE);
+        let sin_w = sin_of(cos_w);
+        let within = cos_w.cmpgt(self.cos_o);
+        let cos_x = Vec4::select(within, Vec4::ONE, cos_w * self.cos_o + sin_w * self.sin_o);
+        let sin_x = Vec4::select(within, Vec4::ZERO, sin_w * self.cos_o - cos_w * self.sin_o);
+        let cos_emit = cos_sub_clamped(cos_x, sin_x, cos_b, sin_b);
+        let mut outside_dark = cos_emit.cmple(self.cos_e);
+        let mut value = self.phi * cos_emit / d2;
+        if has_normal {
+            let cos_n = n_dot * inv_d;
+            let cos_i = if ctx.two_sided { cos_n.abs() } else { -cos_n }
+                .clamp(-Vec4::ONE, Vec4::ONE);
+            let cos_receive = cos_sub_clamped(cos_i, sin_of(cos_i), cos_b, sin_b);
+            if !ctx.two_sided {
+                outside_dark |= cos_receive.cmple(Vec4::ZERO);
+            }
+            value *= cos_receive.max(Vec4::ZERO);
+        }
+        let value = Vec4::select(outside_dark, Vec4::ZERO, value);
+        let value = Vec4::select(inside, inside_value, value);
+        Vec4::select(dark, Vec4::ZERO, value)
+            .max(Vec4::ZERO)
+            .to_array()
     }
 }

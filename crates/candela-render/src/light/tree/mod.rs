@@ -3,24 +3,27 @@
 //! of Many Lights with Adaptive Tree Splitting"; the same scheme as
 //! pbrt-v4's `BVHLightSampler` and Cycles' light tree).
 //!
-//! Every non-delta light at a finite distance is a leaf of a binary tree
-//! whose nodes bound their lights ([`LightBounds`]: a box, a cone of
-//! normals, an emission spread, a power). To choose a light at a point,
-//! the walk from the root takes each child with probability proportional
-//! to its importance there (power over squared distance, times bounds on
-//! the emitter's and the receiver's cosines); the probability of a light is
-//! the product of the branch probabilities down its path, which
-//! [`LightTree::pmf`] retraces from the light's stored trail of branch bits
-//! in O(depth), with the same arithmetic as [`LightTree::choose`], so the
+//! Every non-delta light at a finite distance is a leaf of a tree whose
+//! nodes bound their lights ([`LightBounds`]: a box, a cone of normals, an
+//! emission spread, a power), built binary and walked 4-wide (every other
+//! level folded away, so that one pass of 4-lane arithmetic weighs a
+//! node's children). To choose a light at a point, the walk from the root
+//! takes each child with probability proportional to its importance there
+//! (power over squared distance, times bounds on the emitter's and the
+//! receiver's cosines); the probability of a light is the product of the
+//! branch probabilities down its path, which [`LightTree::pmf`] retraces
+//! from the light's stored trail of lanes in O(depth), with the same arithmetic as [`LightTree::choose`], so the
 //! two agree exactly. A child whose importance is zero is never taken: its
 //! bounds prove that no light below it can reach the point.
 //!
 //! Lights at infinity stay outside the tree, each chosen with the fixed
 //! probability power selection gives it; the tree shares the rest.
 //!
-//! Files: `bounds.rs` (the bounds and their importance), `build.rs` (the
-//! cost-driven build), `importance.rs` (the bounds as the walk reads them,
-//! and their importance, cheaply), `sample.rs` (choosing and the pmf).
+//! Files: `bounds.rs` (the bounds), `build.rs` (the cost-driven binary
+//! build), `wide.rs` (the 4-wide tree), `importance.rs` (four children's
+//! bounds as the walk reads them, and their importance), `sample.rs`
+//! (choosing and the pmf), `reference.rs` (tests: the importance written
+//! plainly).
 
 mod bounds;
 mod build;
@@ -28,6 +31,7 @@ mod importance;
 #[cfg(test)]
 mod reference;
 mod sample;
+mod wide;
 #[cfg(test)]
 mod tests;
 
@@ -73,11 +77,11 @@ impl LightContext {
     }
 }
 
-/// A node: its bounds (in the form the walk reads), and its second child
-/// (the first follows it) or, for a leaf, its light.
+/// A node of the binary tree the build makes: its bounds, and its second
+/// child (the first follows it) or, for a leaf, its light.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    bounds: importance::NodeBounds,
+    bounds: LightBounds,
     second_or_light: u32,
     leaf: bool,
 }
@@ -86,16 +90,17 @@ struct Node {
 /// infinity beside it.
 #[derive(Clone, Debug, Default)]
 pub struct LightTree {
-    nodes: Vec<Node>,
-    /// Per light index: the branch bits down to its leaf (`None` for
-    /// lights not in the tree).
+    /// The 4-wide tree the walk reads (`wide.rs`).
+    nodes: Vec<wide::WideNode>,
+    /// Per light index: the lanes taken down to it, two bits per level
+    /// (`None` for lights not in the tree).
     trails: Vec<Option<u64>>,
     /// Lights at infinity with their probabilities, and the running sum.
     infinite: Vec<(u32, f32)>,
     infinite_cdf: Vec<f32>,
     /// Probability that a light at infinity is chosen (their sum).
     p_infinite: f32,
-    /// Deepest leaf (for tolerances in tests).
+    /// Levels down to the deepest light (for tolerances in tests).
     depth: u32,
 }
 
@@ -133,28 +138,27 @@ impl LightTree {
                 running
             })
             .collect();
-        let built = build::build(leaves);
-        let mut trails = vec![None; lights.len()];
-        let mut depth = 0;
-        for &(light, trail) in &built.trails {
-            trails[light as usize] = Some(trail);
-        }
-        // The depth of a leaf is the number of branches above it; the walk
-        // tells it exactly.
-        for &(_, trail) in &built.trails {
-            depth = depth.max(sample::leaf_depth(&built.nodes, trail));
-        }
+        let wide = if leaves.is_empty() {
+            wide::Wide {
+                nodes: Vec::new(),
+                trails: vec![None; lights.len()],
+                depth: 0,
+            }
+        } else {
+            wide::collapse(&build::build(leaves).nodes, lights.len())
+        };
         Self {
-            nodes: built.nodes,
-            trails,
+            nodes: wide.nodes,
+            trails: wide.trails,
             infinite,
             infinite_cdf,
             p_infinite,
-            depth,
+            depth: wide.depth,
         }
     }
 
-    /// Depth of the deepest leaf (0 for a single light).
+    /// Levels of the walk down to the deepest light (1 for a single
+    /// light).
     pub fn depth(&self) -> u32 {
         self.depth
     }

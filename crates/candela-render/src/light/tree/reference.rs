@@ -109,13 +109,13 @@ impl LightBounds {
     }
 }
 
-/// The precomputed importance equals the plain one up to rounding, and is
-/// zero exactly where it is, at receivers of every kind around groups of
-/// every kind: single flat lights, spheres, and unions (cones of normals
-/// from a point to any direction).
+/// The 4-lane importance equals the plain one lane by lane up to rounding,
+/// and is zero exactly where it is, at receivers of every kind around
+/// groups of every kind: single flat lights, spheres, and unions (cones of
+/// normals from a point to any direction).
 #[test]
 fn precomputed_importance_agrees_with_the_plain_bound() {
-    use super::importance::NodeBounds;
+    use super::importance::Bounds4;
     let mut rng = candela_testkit::SplitMix64::new(11);
     let group = |rng: &mut candela_testkit::SplitMix64| {
         let c = rng.vec(-3.0, 3.0);
@@ -130,16 +130,22 @@ fn precomputed_importance_agrees_with_the_plain_bound() {
     };
     let (mut compared, mut zeros) = (0, 0);
     for k in 0..400 {
-        let mut b = group(&mut rng);
-        // Unions of up to 8 lights, some sharing one orientation.
-        for _ in 0..(k % 8) {
-            let mut other = group(&mut rng);
-            if k % 3 == 0 && b.cos_o >= 1.0 && other.cos_o >= 1.0 {
-                other.axis = b.axis;
-            }
-            b = b.union(&other);
-        }
-        let node = NodeBounds::new(&b);
+        // One to four lanes, each a union of up to 8 lights, some sharing
+        // one orientation.
+        let lanes: Vec<LightBounds> = (0..=k % 4)
+            .map(|lane| {
+                let mut b = group(&mut rng);
+                for _ in 0..((k + lane) % 8) {
+                    let mut other = group(&mut rng);
+                    if k % 3 == 0 && b.cos_o >= 1.0 && other.cos_o >= 1.0 {
+                        other.axis = b.axis;
+                    }
+                    b = b.union(&other);
+                }
+                b
+            })
+            .collect();
+        let wide = Bounds4::new(&lanes);
         for j in 0..40 {
             let p = rng.vec(-5.0, 5.0);
             let ctx = match j % 3 {
@@ -147,14 +153,19 @@ fn precomputed_importance_agrees_with_the_plain_bound() {
                 1 => LightContext::surface(p, rng.dir(), true),
                 _ => LightContext::point(p),
             };
-            let (want, got) = (b.importance(&ctx), node.importance(&ctx));
-            assert_eq!(want == 0.0, got == 0.0, "{b:?} at {ctx:?}: {want} vs {got}");
-            zeros += usize::from(want == 0.0);
-            assert!(
-                (got - want).abs() <= 1e-4 * want,
-                "{b:?} at {ctx:?}: {want} vs {got}"
-            );
-            compared += 1;
+            let got = wide.importance(&ctx);
+            for (lane, b) in lanes.iter().enumerate() {
+                let (want, got) = (b.importance(&ctx), got[lane]);
+                assert_eq!(want == 0.0, got == 0.0, "{b:?} at {ctx:?}: {want} vs {got}");
+                zeros += usize::from(want == 0.0);
+                assert!(
+                    (got - want).abs() <= 1e-4 * want,
+                    "{b:?} at {ctx:?}: {want} vs {got}"
+                );
+                compared += 1;
+            }
+            // Unused lanes are never taken.
+            assert!(got[lanes.len()..].iter().all(|&w| w == 0.0), "{got:?}");
         }
     }
     // Both outcomes were exercised.

@@ -1,46 +1,23 @@
 //! Choosing a light by walking the tree, and the probability of a given
-//! light by retracing its trail: one branch rule ([`branch`]) serves both,
-//! so [`LightTree::pmf`] returns exactly the probability
-//! [`LightTree::choose`] reports.
+//! light by retracing its trail: one rule ([`weights`]: each lane's
+//! importance over the node's total) serves both, so [`LightTree::pmf`]
+//! returns exactly the probability [`LightTree::choose`] reports.
 
-use super::{LightContext, LightTree, Node};
+use super::wide::{WideNode, LEAF};
+use super::{LightContext, LightTree};
 
 /// The largest `f32` below 1: a remapped random number must stay in [0, 1).
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
-/// The probability of taking the first child of interior node `at` at
-/// `ctx` (its importance over the pair's), or `None` when neither child
-/// can reach the point.
-fn branch(nodes: &[Node], at: usize, ctx: &LightContext) -> Option<f32> {
-    let second = nodes[at].second_or_light as usize;
-    let i0 = nodes[at + 1].bounds.importance(ctx);
-    let i1 = nodes[second].bounds.importance(ctx);
-    let total = i0 + i1;
+/// The importance of each child of `node` at `ctx` and their sum, or
+/// `None` when no child can reach the point.
+fn weights(node: &WideNode, ctx: &LightContext) -> Option<([f32; 4], f32)> {
+    let w = node.bounds.importance(ctx);
+    let total = w[0] + w[1] + w[2] + w[3];
     if total.is_nan() || total <= 0.0 || total.is_infinite() {
         return None;
     }
-    Some(i0 / total)
-}
-
-/// Whether a tree that is a single leaf can reach the point at all (a
-/// leaf below the root was already vouched for by its parent's branch).
-fn root_leaf_reaches(nodes: &[Node], ctx: &LightContext) -> bool {
-    nodes[0].bounds.importance(ctx) > 0.0
-}
-
-/// The number of branches from the root down to the leaf of `trail`.
-pub(super) fn leaf_depth(nodes: &[Node], mut trail: u64) -> u32 {
-    let (mut at, mut depth) = (0usize, 0u32);
-    while !nodes[at].leaf {
-        at = if trail & 1 == 0 {
-            at + 1
-        } else {
-            nodes[at].second_or_light as usize
-        };
-        trail >>= 1;
-        depth += 1;
-    }
-    depth
+    Some((w, total))
 }
 
 impl LightTree {
@@ -64,23 +41,30 @@ impl LightTree {
         }
         let mut pmf = 1.0 - self.p_infinite;
         let mut at = 0usize;
-        if self.nodes[0].leaf && !root_leaf_reaches(&self.nodes, ctx) {
-            return None;
-        }
-        while !self.nodes[at].leaf {
-            let p0 = branch(&self.nodes, at, ctx)?;
-            if u < p0 {
-                pmf *= p0;
-                u = (u / p0).min(ONE_MINUS_EPSILON);
-                at += 1;
-            } else {
-                let p1 = 1.0 - p0;
-                pmf *= p1;
-                u = ((u - p0) / p1).min(ONE_MINUS_EPSILON);
-                at = self.nodes[at].second_or_light as usize;
+        loop {
+            let node = &self.nodes[at];
+            let (w, total) = weights(node, ctx)?;
+            // The first lane whose running sum passes u · total; rounding
+            // past the last one takes the last lane that can be taken.
+            let target = u * total;
+            let (mut lane, mut before, mut sum) = (0, 0.0, 0.0);
+            for (k, &wk) in w.iter().enumerate() {
+                if wk > 0.0 {
+                    (lane, before) = (k, sum);
+                    sum += wk;
+                    if target < sum {
+                        break;
+                    }
+                }
             }
+            pmf *= w[lane] / total;
+            u = ((target - before) / w[lane]).clamp(0.0, ONE_MINUS_EPSILON);
+            let child = node.child[lane];
+            if child & LEAF != 0 {
+                return Some((child & !LEAF, pmf));
+            }
+            at = child as usize;
         }
-        Some((self.nodes[at].second_or_light, pmf))
     }
 
     /// Probability that [`LightTree::choose`] at `ctx` picks light `i` (0
@@ -92,52 +76,46 @@ impl LightTree {
         let Some(Some(mut trail)) = self.trails.get(i as usize).copied() else {
             return 0.0;
         };
-        if self.nodes[0].leaf && !root_leaf_reaches(&self.nodes, ctx) {
-            return 0.0;
-        }
         let mut pmf = 1.0 - self.p_infinite;
         let mut at = 0usize;
-        while !self.nodes[at].leaf {
-            let Some(p0) = branch(&self.nodes, at, ctx) else {
+        loop {
+            let node = &self.nodes[at];
+            let Some((w, total)) = weights(node, ctx) else {
                 return 0.0;
             };
-            if trail & 1 == 0 {
-                pmf *= p0;
-                at += 1;
-            } else {
-                pmf *= 1.0 - p0;
-                at = self.nodes[at].second_or_light as usize;
+            let lane = (trail & 3) as usize;
+            pmf *= w[lane] / total;
+            let child = node.child[lane];
+            if child & LEAF != 0 || pmf == 0.0 {
+                return pmf;
             }
-            trail >>= 1;
+            at = child as usize;
+            trail >>= 2;
         }
-        pmf
     }
 
     /// Probability that [`LightTree::choose`] at `ctx` returns `None`: the
-    /// mass the walk sends into nodes whose children the bounds both prove
+    /// mass the walk sends into nodes whose children the bounds all prove
     /// dark (a parent's looser bounds may not), so that
     /// `Σ pmf + dark_probability = 1`. Every path is walked: for tests.
     #[cfg(test)]
     pub(super) fn dark_probability(&self, ctx: &LightContext) -> f64 {
-        fn walk(nodes: &[Node], at: usize, ctx: &LightContext, mass: f64) -> f64 {
-            if nodes[at].leaf {
-                return 0.0;
-            }
-            match branch(nodes, at, ctx) {
-                None => mass,
-                Some(p0) => {
-                    let second = nodes[at].second_or_light as usize;
-                    walk(nodes, at + 1, ctx, mass * f64::from(p0))
-                        + walk(nodes, second, ctx, mass * f64::from(1.0 - p0))
+        fn walk(nodes: &[WideNode], at: usize, ctx: &LightContext, mass: f64) -> f64 {
+            let Some((w, total)) = weights(&nodes[at], ctx) else {
+                return mass;
+            };
+            let mut dark = 0.0;
+            for (lane, &wk) in w.iter().enumerate() {
+                let child = nodes[at].child[lane];
+                if wk > 0.0 && child & LEAF == 0 {
+                    dark += walk(nodes, child as usize, ctx, mass * f64::from(wk / total));
                 }
             }
+            dark
         }
         let tree_mass = f64::from(1.0 - self.p_infinite);
         if self.nodes.is_empty() {
             return if self.infinite.is_empty() { 1.0 } else { 0.0 };
-        }
-        if self.nodes[0].leaf && !root_leaf_reaches(&self.nodes, ctx) {
-            return tree_mass;
         }
         walk(&self.nodes, 0, ctx, tree_mass)
     }
