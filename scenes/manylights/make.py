@@ -214,8 +214,8 @@ def city():
     to h^2 / d^4 at distance d), and the buildings hide the other
     streets, so almost all of the 11,000 lamps are dark at any given
     point: the case a light tree is for, unlike the hall, where every lamp
-    of the ceiling reaches most of the floor. The camera looks down the
-    streets from above the roofs; it sees the lamps' dark backs only."""
+    of the ceiling reaches most of the floor. The camera looks along a
+    street from 6 m up at its end; it sees the lamps' dark backs only."""
     groups = city_lamps()
     colours = ["60, 40, 20", "30, 40, 60", "50, 50, 50"]
     for k, tris in enumerate(groups):
@@ -227,7 +227,7 @@ def city():
         '<scene version="3.0.0">',
         '  <sensor type="perspective">',
         '    <float name="fov" value="50"/>',
-        '    <transform name="to_world"><lookat origin="-14 24 30" target="2 0 2" up="0, 1, 0"/></transform>',
+        '    <transform name="to_world"><lookat origin="1.2 6 34" target="-0.5 0 4" up="0, 1, 0"/></transform>',
         '    <film type="hdrfilm"><integer name="width" value="640"/><integer name="height" value="360"/></film>',
         '  </sensor>',
         '  <bsdf type="diffuse" id="grey"><rgb name="reflectance" value="0.5, 0.5, 0.5"/></bsdf>',
