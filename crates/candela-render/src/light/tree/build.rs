@@ -33,11 +33,7 @@ pub(super) fn build(mut lights: Vec<(u32, LightBounds)>) -> Built {
 }
 
 /// Appends the subtree over `lights` and returns its bounds.
-fn subtree(
-    lights: &mut [(u32, LightBounds)],
-    depth: u32,
-    out: &mut Built,
-) -> LightBounds {
+fn subtree(lights: &mut [(u32, LightBounds)], depth: u32, out: &mut Built) -> LightBounds {
     if let [(light, bounds)] = lights {
         out.nodes.push(Node {
             bounds: *bounds,

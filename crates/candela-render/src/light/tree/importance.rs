@@ -71,9 +71,7 @@ impl Bounds4 {
             }
             Vec4::from_array(v)
         };
-        let vec = |f: &dyn Fn(&LightBounds) -> Vec3| {
-            [0, 1, 2].map(|k| lane(&|g| f(g)[k], 0.0))
-        };
+        let vec = |f: &dyn Fn(&LightBounds) -> Vec3| [0, 1, 2].map(|k| lane(&|g| f(g)[k], 0.0));
         let half = |g: &LightBounds| 0.5 * (g.hi - g.lo);
         let radius2 = lane(&|g| half(g).length_squared(), 1.0);
         let cos_o = lane(&|g| g.cos_o, 1.0);
@@ -114,7 +112,8 @@ impl Bounds4 {
             BVec4A::FALSE
         };
         let axis_dot = dot3(&self.axis, &to_p);
-        dark |= self.cos_o.cmpge(Vec4::ONE) & (dot3(&axis_abs, &self.half) + axis_dot).cmple(Vec4::ZERO);
+        dark |= self.cos_o.cmpge(Vec4::ONE)
+            & (dot3(&axis_abs, &self.half) + axis_dot).cmple(Vec4::ZERO);
 
         let d2 = dot3(&to_p, &to_p);
         // Inside the bounding sphere every direction is possible: both
@@ -142,8 +141,8 @@ impl Bounds4 {
         let mut value = self.phi * cos_emit / d2;
         if has_normal {
             let cos_n = n_dot * inv_d;
-            let cos_i = if ctx.two_sided { cos_n.abs() } else { -cos_n }
-                .clamp(-Vec4::ONE, Vec4::ONE);
+            let cos_i =
+                if ctx.two_sided { cos_n.abs() } else { -cos_n }.clamp(-Vec4::ONE, Vec4::ONE);
             let cos_receive = cos_sub_clamped(cos_i, sin_of(cos_i), cos_b, sin_b);
             if !ctx.two_sided {
                 outside_dark |= cos_receive.cmple(Vec4::ZERO);

@@ -31,9 +31,9 @@ mod importance;
 #[cfg(test)]
 mod reference;
 mod sample;
-mod wide;
 #[cfg(test)]
 mod tests;
+mod wide;
 
 pub use bounds::LightBounds;
 

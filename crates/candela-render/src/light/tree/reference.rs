@@ -169,5 +169,8 @@ fn precomputed_importance_agrees_with_the_plain_bound() {
         }
     }
     // Both outcomes were exercised.
-    assert!(zeros > compared / 20 && zeros < compared / 2, "{zeros} of {compared}");
+    assert!(
+        zeros > compared / 20 && zeros < compared / 2,
+        "{zeros} of {compared}"
+    );
 }
