@@ -65,7 +65,7 @@ pub fn square_to_spherical_triangle(v: [Vec3; 3], u: Vec2) -> Option<Vec3> {
     let beta = angle_between(n_bc, -n_ab);
     let gamma = angle_between(n_ca, -n_bc);
     let area = alpha + beta + gamma - PI;
-    if !(area > 0.0) {
+    if area.is_nan() || area <= 0.0 {
         return None;
     }
     // The sub-triangle A B C' of area u0·Ω: Arvo's closed form for the
@@ -122,7 +122,7 @@ pub fn square_to_spherical_rectangle(
         z = -z;
         z0 = -z0;
     }
-    if !(z0 < 0.0) {
+    if z0.is_nan() || z0 >= 0.0 {
         return None;
     }
     let (x0, y0) = (corner.dot(x), corner.dot(y));
@@ -139,7 +139,7 @@ pub fn square_to_spherical_rectangle(
     let g3 = angle_between(-n3, n0);
     let k = 2.0 * PI - g2 - g3;
     let area = g0 + g1 - k;
-    if !(area > 0.0) {
+    if area.is_nan() || area <= 0.0 {
         return None;
     }
     // x of the point: the strip [x0, xu] holds u0 of the solid angle. The
