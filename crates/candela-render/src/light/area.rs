@@ -5,8 +5,8 @@
 //! subtend where that is stable and worth it, else by area
 //! (`area/solid_angle.rs`).
 //!
-//! A textured emitter is still sampled as before (uniformly by area, or
-//! by solid angle for spheres): the density of a sampled point does not
+//! A textured emitter is sampled like an untextured one (by solid angle,
+//! or by area where that falls back): the density of a sampled point does not
 //! depend on the radiance there, so evaluating the texture at the sampled
 //! point (times the surface's opacity there, see `shading/opacity.rs`)
 //! keeps the estimate unbiased; only its variance depends on how uneven the
@@ -191,8 +191,8 @@ impl AreaLight {
 
     /// A point uniform by area on the surface, with its error bound and
     /// emitting normal, and the radiance it emits (textured: at its UV).
-    /// Light sampling (triangles, rectangles) and emission sampling share
-    /// it.
+    /// Emission sampling and light sampling's fallback to sampling by area
+    /// (triangles, rectangles) share it.
     pub(super) fn sample_point(&self, u: Vec2) -> (SurfacePoint, Vec3) {
         match &self.shape {
             AreaShape::Triangle { v, normal } => {
