@@ -122,7 +122,7 @@ impl AreaLight {
                 return self.sample_sphere(p, *center, *radius, u)
             }
             shape => {
-                if let Some(sampling) = solid_angle::choose(shape, p) {
+                if let Some(sampling) = solid_angle::choose(shape, p, area) {
                     return self.sample_solid_angle(p, u, sampling);
                 }
                 let (point, l) = self.sample_point(u);
@@ -304,7 +304,7 @@ impl AreaLight {
         if cos_light <= 0.0 {
             return 0.0;
         }
-        if let Some(sampling) = solid_angle::choose(&self.shape, p) {
+        if let Some(sampling) = solid_angle::choose(&self.shape, p, area) {
             return 1.0 / sampling.solid_angle();
         }
         (p_light - p).length_squared() / (cos_light * area)

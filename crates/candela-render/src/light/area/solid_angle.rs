@@ -84,31 +84,40 @@ fn is_rectangle(shape: &Parallelogram) -> bool {
     e0.dot(e1).abs() <= RECTANGLE_COSINE * e0.length() * e1.length()
 }
 
-/// How to sample the planar `shape` seen from `p` by solid angle, or `None`
+/// How to sample the planar `shape` of surface `area` seen from `p` by
+/// solid angle, or `None`
 /// to sample it by area (spheres; a viewpoint behind or in the lamp's plane,
 /// which sees nothing; a lamp far enough for [`SOLID_ANGLE_GATE`]; solid
 /// angles outside the bounds above).
-pub(super) fn choose(shape: &AreaShape, p: Vec3) -> Option<SolidAngleSampling> {
-    let (corner, normal) = match shape {
-        AreaShape::Triangle { v, normal } => (v[0], *normal),
-        AreaShape::Rect { shape, normal } => (shape.origin, *normal),
-        AreaShape::Sphere { .. } => return None,
-    };
-    if (p - corner).dot(normal) <= 0.0 {
-        return None;
-    }
-    let (area, centre) = match shape {
-        AreaShape::Triangle { v, .. } => (
-            0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length(),
-            (v[0] + v[1] + v[2]) / 3.0,
-        ),
-        AreaShape::Rect { shape, .. } => (
-            shape.edge0.cross(shape.edge1).length(),
+#[inline(always)]
+pub(super) fn choose(shape: &AreaShape, p: Vec3, area: f32) -> Option<SolidAngleSampling> {
+    // The gate first: most shading points are far from the lamp, and this
+    // test is a handful of multiplications (the lamp's area is precomputed).
+    let (corner, normal, centre) = match shape {
+        AreaShape::Triangle { v, normal } => (v[0], *normal, (v[0] + v[1] + v[2]) * (1.0 / 3.0)),
+        AreaShape::Rect { shape, normal } => (
+            shape.origin,
+            *normal,
             shape.origin + 0.5 * (shape.edge0 + shape.edge1),
         ),
         AreaShape::Sphere { .. } => return None,
     };
     if area < SOLID_ANGLE_GATE * (centre - p).length_squared() {
+        return None;
+    }
+    choose_near(shape, p, corner, normal)
+}
+
+/// [`choose`] for a viewpoint the gate let through (kept out of line: the
+/// gate alone is inlined into every light sample).
+#[inline(never)]
+fn choose_near(
+    shape: &AreaShape,
+    p: Vec3,
+    corner: Vec3,
+    normal: Vec3,
+) -> Option<SolidAngleSampling> {
+    if (p - corner).dot(normal) <= 0.0 {
         return None;
     }
     let sampling = match shape {
