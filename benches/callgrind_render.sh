@@ -40,12 +40,16 @@ total = int(re.search(r"([\d,]+) \(100.0%\)\s+PROGRAM TOTALS", annotate()).group
 def inclusive(fn):
     return max((n for n, _, f in incl if f.strip() == fn), default=0)
 render = inclusive("rayon::iter::plumbing::bridge_producer_consumer::helper")
-shadow = inclusive("candela_render::scene::visibility::<impl candela_render::scene::Scene>::occluded_visible")
-closest = inclusive("candela_render::scene::visibility::<impl candela_render::scene::Scene>::intersect_visible")
+visibility = "candela_render::scene::visibility::<impl candela_render::scene::Scene>::"
+shadow = inclusive(visibility + "occluded_visible")
+closest = inclusive(visibility + "intersect_visible")
 light = inclusive("candela_render::integrator::direct::Vertex::light_sample") - shadow \
     + inclusive("candela_render::light::area::AreaLight::sample_li_with_area")
-sampler = sum(n for n, file, f in self_ if "helper" in f and (
-    file.endswith(("sampling/hash.rs", "sampling/sobol.rs", "sampling/sampler.rs", "num/uint_macros.rs"))))
+# The draws where they are calls of their own, and what is inlined into the loop.
+sampler = inclusive("candela_render::sampling::sampler::Sampler::next_1d") \
+    + inclusive("candela_render::sampling::sampler::Sampler::next_2d") \
+    + sum(n for n, file, f in self_ if "helper" in f and (
+        file.endswith(("sampling/hash.rs", "sampling/sobol.rs", "sampling/sampler.rs", "num/uint_macros.rs"))))
 print(f"total instructions: {total:,}")
 print(f"render loop: {render:,} (100%)")
 for name, n in [("shadow-ray queries (any hit)", shadow), ("closest-hit queries + surface set-up", closest),

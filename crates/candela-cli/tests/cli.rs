@@ -32,17 +32,17 @@ fn path(p: &Path) -> &str {
 }
 
 #[test]
-fn a_failing_write_exits_non_zero_and_leaves_no_file() {
+fn an_output_in_a_missing_folder_is_bad_input_and_leaves_no_file() {
     let dir = scratch("failwrite");
     let out = dir.join("missing").join("out.png");
     let run = candela(&["-s", "1", "-q", "-f", path(&out)]);
     assert_eq!(
         run.status.code(),
-        Some(1),
+        Some(2),
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    assert!(String::from_utf8_lossy(&run.stderr).contains("cannot write"));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("cannot create"));
     assert!(!out.exists());
     let left: Vec<_> = std::fs::read_dir(&dir).expect("folder").collect();
     assert!(left.is_empty(), "left behind: {left:?}");

@@ -48,6 +48,8 @@ mod fresnel;
 #[cfg(test)]
 mod furnace_tests;
 mod ggx;
+#[cfg(test)]
+mod lobe_choice_tests;
 mod metallic_roughness;
 #[cfg(test)]
 mod metallic_roughness_tests;
@@ -271,6 +273,24 @@ impl Bsdf {
                 k,
             } => microfacet::f(distribution, eta, k, wo, wi),
             Bsdf::MetallicRoughness(m) => m.f(wo, wi),
+        }
+    }
+
+    /// Whether [`Bsdf::sample`] reads its `u1` (chooses between lobes);
+    /// when not, a caller may skip drawing it.
+    pub fn samples_a_lobe(&self) -> bool {
+        match self {
+            Bsdf::Diffuse { .. }
+            | Bsdf::Mirror { .. }
+            | Bsdf::Refraction { .. }
+            | Bsdf::Conductor { .. }
+            | Bsdf::Microfacet { .. } => false,
+            Bsdf::Glass { .. }
+            | Bsdf::ThinGlass { .. }
+            | Bsdf::RoughGlass { .. }
+            | Bsdf::Plastic(_)
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::MetallicRoughness(_) => true,
         }
     }
 

@@ -140,7 +140,14 @@ pub fn path_radiance<R: PathRecorder>(
         // A direction on the wrong side of the true surface would leak
         // through it (shading normals bend, geometry does not): the
         // sample is rejected (`shading::scatter_allowed`).
-        let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
+        // A one-lobe BSDF ignores `u1`: its dimension is skipped, not drawn.
+        let u1 = if bsdf.samples_a_lobe() {
+            sampler.next_1d()
+        } else {
+            sampler.skip(1);
+            0.0
+        };
+        let u2 = sampler.next_2d();
         let (wi, s) = match sample_scatter(&bsdf, &frame, hit.ng, hit.wo, u1, u2) {
             Ok(scattered) => scattered,
             Err(NoScatter::NoSample) => break PathEnd::NoScatter,

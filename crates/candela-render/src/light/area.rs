@@ -1,14 +1,22 @@
 //! Emitting surfaces: mesh triangles, spheres and CGL rectangles, each
 //! one-sided, with constant radiance or an emission texture.
 //!
-//! A textured emitter is still sampled as before (uniformly by area, or
-//! by solid angle for spheres): the density of a sampled point does not
+//! Light sampling of triangles and rectangles is by the solid angle they
+//! subtend where that is stable and worth it, else by area
+//! (`area/solid_angle.rs`).
+//!
+//! A textured emitter is sampled like an untextured one (by solid angle,
+//! or by area where that falls back): the density of a sampled point does not
 //! depend on the radiance there, so evaluating the texture at the sampled
 //! point (times the surface's opacity there, see `shading/opacity.rs`)
 //! keeps the estimate unbiased; only its variance depends on how uneven the
 //! texture is. The power used to choose among lights is the texture's mean
 //! (an approximation is enough: any positive selection probability is
 //! unbiased).
+
+mod solid_angle;
+#[cfg(test)]
+pub(super) use solid_angle::MAX_SOLID_ANGLE;
 
 use super::{luminance, LightSample};
 use crate::geometry::Frame;
@@ -113,7 +121,10 @@ impl AreaLight {
             AreaShape::Sphere { center, radius } => {
                 return self.sample_sphere(p, *center, *radius, u)
             }
-            _ => {
+            shape => {
+                if let Some(sampling) = solid_angle::choose(shape, p, area) {
+                    return self.sample_solid_angle(p, u, sampling);
+                }
                 let (point, l) = self.sample_point(u);
                 (point.p, point.n, l)
             }
@@ -137,10 +148,51 @@ impl AreaLight {
         })
     }
 
+    /// [`AreaLight::sample_li`] for a planar lamp sampled by solid angle
+    /// as `sampling` says: the point is where the direction meets the lamp.
+    fn sample_solid_angle(
+        &self,
+        p: Vec3,
+        u: Vec2,
+        sampling: solid_angle::SolidAngleSampling,
+    ) -> Option<LightSample> {
+        let (wi, point) = solid_angle::sample(&self.shape, sampling, p, u)?;
+        let (normal, corner) = match &self.shape {
+            AreaShape::Triangle { v, normal } => (*normal, v[0]),
+            AreaShape::Rect { shape, normal } => (*normal, shape.origin),
+            AreaShape::Sphere { .. } => return None,
+        };
+        let cos_light = -normal.dot(wi);
+        if cos_light <= 0.0 {
+            return None;
+        }
+        let distance = match point {
+            Some(q) => q.length(),
+            // The plane through the lamp, met along wi.
+            None => (p - corner).dot(normal) / cos_light,
+        };
+        if !(distance > 0.0 && distance.is_finite()) {
+            return None;
+        }
+        let l = match (&self.shape, &self.textured) {
+            (AreaShape::Triangle { v, normal }, Some(t)) => {
+                let b = barycentric(v, *normal, p + distance * wi);
+                t.at(b[0] * t.uvs[0] + b[1] * t.uvs[1] + b[2] * t.uvs[2])
+            }
+            _ => self.radiance,
+        };
+        Some(LightSample {
+            wi,
+            l,
+            distance,
+            pdf: 1.0 / sampling.solid_angle(),
+        })
+    }
+
     /// A point uniform by area on the surface, with its error bound and
     /// emitting normal, and the radiance it emits (textured: at its UV).
-    /// Light sampling (triangles, rectangles) and emission sampling share
-    /// it.
+    /// Emission sampling and light sampling's fallback to sampling by area
+    /// (triangles, rectangles) share it.
     pub(super) fn sample_point(&self, u: Vec2) -> (SurfacePoint, Vec3) {
         match &self.shape {
             AreaShape::Triangle { v, normal } => {
@@ -252,10 +304,27 @@ impl AreaLight {
         if cos_light <= 0.0 {
             return 0.0;
         }
+        if let Some(sampling) = solid_angle::choose(&self.shape, p, area) {
+            return 1.0 / sampling.solid_angle();
+        }
         (p_light - p).length_squared() / (cos_light * area)
     }
 
     pub(super) fn power(&self) -> f32 {
         PI * self.shape.area() * luminance(self.radiance)
     }
+}
+
+/// The corner weights of point `q` in the plane of triangle `v` (unit
+/// `normal`), as `surface_hit` interpolates UVs: signed sub-triangle areas
+/// over the whole.
+fn barycentric(v: &[Vec3; 3], normal: Vec3, q: Vec3) -> [f32; 3] {
+    let area = |a: Vec3, b: Vec3, c: Vec3| (b - a).cross(c - a).dot(normal);
+    let total = area(v[0], v[1], v[2]);
+    if total == 0.0 {
+        return [1.0 / 3.0; 3];
+    }
+    let b0 = area(q, v[1], v[2]) / total;
+    let b1 = area(v[0], q, v[2]) / total;
+    [b0, b1, 1.0 - b0 - b1]
 }

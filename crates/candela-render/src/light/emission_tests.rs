@@ -532,3 +532,47 @@ fn emitters_are_chosen_by_power_delta_lights_included() {
         .choose_emitter(0.5)
         .is_none());
 }
+
+/// Light sampling a textured triangle by solid angle finds the point where
+/// the sampled direction meets the triangle, and reads the texture there
+/// (the barycentrics solved here independently, by least squares).
+#[test]
+fn textured_triangle_light_samples_read_the_texture_where_they_land() {
+    let light = triangle(Vec3::ONE, Some(striped_emission()));
+    let (AreaShape::Triangle { v, normal }, Some(t)) = (&light.shape, &light.textured) else {
+        unreachable!()
+    };
+    let p = (v[0] + v[1] + v[2]) / 3.0 + 0.7 * *normal + Vec3::new(0.2, 0.0, -0.1);
+    let (e1, e2) = ((v[1] - v[0]).as_dvec3(), (v[2] - v[0]).as_dvec3());
+    let mut checked = 0;
+    for i in 0..64 {
+        let u = Vec2::new((i as f32 + 0.5) / 64.0, (i as f32 * 0.618_034) % 1.0);
+        let s = Light::Area(light.clone())
+            .sample_li(p, u)
+            .expect("front side");
+        let omega = crate::sampling::warp::triangle_solid_angle(v[0] - p, v[1] - p, v[2] - p);
+        assert!(
+            (s.pdf * omega - 1.0).abs() < 1e-4,
+            "not sampled by solid angle"
+        );
+        let d = (p + s.distance * s.wi - v[0]).as_dvec3();
+        // Normal equations of d = a·e1 + b·e2.
+        let (g11, g12, g22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let det = g11 * g22 - g12 * g12;
+        let a = (g22 * d.dot(e1) - g12 * d.dot(e2)) / det;
+        let b = (g11 * d.dot(e2) - g12 * d.dot(e1)) / det;
+        assert!(
+            a >= -1e-4 && b >= -1e-4 && a + b <= 1.0 + 1e-4,
+            "{a} {b} off the triangle"
+        );
+        let uv = (1.0 - a - b) as f32 * t.uvs[0] + a as f32 * t.uvs[1] + b as f32 * t.uvs[2];
+        let want = t.at(uv);
+        assert!(
+            (s.l - want).abs().max_element() <= 1e-3 * want.max_element(),
+            "{:?} vs {want:?}",
+            s.l
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 64);
+}

@@ -10,9 +10,12 @@
 //!   (a BSDF sample that happened to hit the light).
 //!
 //! Emissive geometry (mesh triangles, spheres) and CGL area rectangles are
-//! sampled by area and converted to solid angle (`pdf_A · d² / |cos θ_l|`),
-//! except spheres seen from outside, sampled uniformly in the cone they
-//! subtend. Emitters are one-sided: they emit on the side of their normal.
+//! sampled uniformly in the solid angle they subtend: spheres seen from
+//! outside in their cone, triangles and rectangles as spherical polygons
+//! (`area/solid_angle.rs`), which fall back to sampling by area converted
+//! to solid angle (`pdf_A · d² / |cos θ_l|`) when the lamp looks tiny or
+//! fills nearly a hemisphere. Emitters are one-sided: they emit on the side
+//! of their normal.
 //!
 //! Methods that start paths at the lights (light tracing, BDPT) sample
 //! rays leaving them with [`Light::sample_le`] and [`Light::pdf_le`]

@@ -121,7 +121,128 @@ fn rectangle_light_sampling_matches_its_pdf() {
         radiance: Vec3::ONE,
         textured: None,
     };
-    check_area_light("rectangle", light, &[Vec3::ZERO, Vec3::new(-1.0, 0.5, 0.3)]);
+    check_area_light(
+        "rectangle",
+        light.clone(),
+        // Below, off to the side, near a corner (a wide solid angle), and so
+        // close to the middle that it fills more than MAX_SOLID_ANGLE and is
+        // sampled by area.
+        &[
+            Vec3::ZERO,
+            Vec3::new(-1.0, 0.5, 0.3),
+            Vec3::new(-0.25, 0.9, -0.35),
+            Vec3::new(0.0, 0.998, 0.0),
+        ],
+    );
+    let AreaShape::Rect { shape, .. } = &light.shape else {
+        unreachable!()
+    };
+    let omega = crate::sampling::warp::rectangle_solid_angle(
+        shape.origin - Vec3::new(0.0, 0.998, 0.0),
+        shape.edge0,
+        shape.edge1,
+    );
+    assert!(
+        omega > area::MAX_SOLID_ANGLE,
+        "{omega}: not the area fallback"
+    );
+}
+
+#[test]
+fn parallelogram_light_sampling_matches_its_pdf() {
+    // Skewed edges: sampled as two spherical triangles.
+    let light = AreaLight {
+        shape: AreaShape::Rect {
+            shape: Parallelogram {
+                origin: Vec3::new(-0.4, 1.0, -0.3),
+                edge0: Vec3::new(0.7, 0.0, 0.1),
+                edge1: Vec3::new(0.3, 0.0, 0.6),
+            },
+            normal: -Vec3::Y,
+        },
+        radiance: Vec3::ONE,
+        textured: None,
+    };
+    check_area_light(
+        "parallelogram",
+        light,
+        &[
+            Vec3::ZERO,
+            Vec3::new(0.8, 0.7, 0.9),
+            Vec3::new(0.0, 0.8, 0.0),
+        ],
+    );
+}
+
+/// `pdf_li` at the point `sample_li` found equals the density it reported,
+/// on both sides of the thresholds between solid-angle and area sampling
+/// (the choice depends on the viewpoint only, so both agree on it).
+#[test]
+fn planar_lights_report_the_density_they_sampled_with() {
+    let rect = |edge1: Vec3| AreaLight {
+        shape: AreaShape::Rect {
+            shape: Parallelogram {
+                origin: Vec3::new(-0.05, 0.0, -0.05),
+                edge0: Vec3::new(0.1, 0.0, 0.0),
+                edge1,
+            },
+            normal: -Vec3::Y,
+        },
+        radiance: Vec3::ONE,
+        textured: None,
+    };
+    let triangle = AreaLight {
+        shape: AreaShape::Triangle {
+            v: [
+                Vec3::new(-0.05, 0.0, -0.05),
+                Vec3::new(0.05, 0.0, -0.05),
+                Vec3::new(0.0, 0.0, 0.08),
+            ],
+            normal: -Vec3::Y,
+        },
+        radiance: Vec3::ONE,
+        textured: None,
+    };
+    let lights = [
+        rect(Vec3::new(0.0, 0.0, 0.1)),
+        rect(Vec3::new(0.03, 0.0, 0.1)),
+        triangle,
+    ];
+    let (mut by_area, mut by_solid_angle) = (0, 0);
+    for light in &lights {
+        let area = light.shape.area();
+        // Distances from 1 mm (a near hemisphere) to 20 (a tiny lamp).
+        for k in 0..40 {
+            let h = 1e-3 * 1.3f32.powi(k);
+            let p = Vec3::new(0.01, -h, 0.02);
+            for i in 0..8 {
+                let u = Vec2::new((i as f32 + 0.5) / 8.0, 0.618 * i as f32 % 1.0);
+                let Some(s) = light.sample_li(p, u) else {
+                    continue;
+                };
+                let q = p + s.distance * s.wi;
+                let pdf = light.pdf_li(p, s.wi, q);
+                assert!(
+                    (pdf - s.pdf).abs() <= 1e-3 * s.pdf,
+                    "{:?} from {p:?}: sampled with {} but pdf_li says {pdf}",
+                    light.shape,
+                    s.pdf
+                );
+                let cos = s.wi.y;
+                let area_pdf = s.distance * s.distance / (cos * area);
+                if (area_pdf - s.pdf).abs() <= 1e-5 * s.pdf {
+                    by_area += 1;
+                } else {
+                    by_solid_angle += 1;
+                }
+            }
+        }
+    }
+    // Both methods were exercised.
+    assert!(
+        by_area > 50 && by_solid_angle > 200,
+        "{by_area} {by_solid_angle}"
+    );
 }
 
 #[test]

@@ -99,4 +99,27 @@ mod tests {
         assert!(offset_ray_origin(p, e, n, -Vec3::Z).z < p.z - 1e-3);
         assert_eq!(offset_ray_origin(p, e, n, Vec3::Z).x, p.x);
     }
+
+    #[test]
+    fn offset_depends_on_w_only_through_its_side() {
+        // Next-event estimation computes one origin per side of a vertex
+        // and reuses it for every shadow ray leaving on that side.
+        let (p, e) = (Vec3::new(0.3, -2.0, 7.5), Vec3::new(2e-6, 3e-6, 5e-6));
+        let n = Vec3::new(0.2, 0.9, -0.3).normalize();
+        let above = offset_ray_origin(p, e, n, n);
+        let below = offset_ray_origin(p, e, n, -n);
+        assert_ne!(above, below);
+        for w in [
+            Vec3::X,
+            -Vec3::X,
+            Vec3::Y,
+            -Vec3::Y,
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::ONE,
+        ] {
+            let want = if w.dot(n) < 0.0 { below } else { above };
+            assert_eq!(offset_ray_origin(p, e, n, w), want, "{w}");
+        }
+    }
 }

@@ -7,11 +7,18 @@
 //! check bijectivity and let future code (e.g. path guiding or MLT) map
 //! directions back to sample space.
 //!
-//! Directions are in a local frame whose +Z is the pole (the normal for
+//! The spherical-polygon warps (`spherical_polygon.rs`) sample the solid
+//! angle a triangle or rectangle subtends; their directions are in world
+//! space, with corners given relative to the viewpoint.
+//!
+//! Other directions are in a local frame whose +Z is the pole (the normal for
 //! hemispheres, the axis for cones).
 
 mod planar;
 mod spherical;
+mod spherical_polygon;
+#[cfg(test)]
+mod spherical_polygon_tests;
 #[cfg(test)]
 mod tests;
 
@@ -24,4 +31,8 @@ pub use spherical::{
     square_to_uniform_cone, square_to_uniform_hemisphere, square_to_uniform_sphere,
     uniform_cone_pdf, uniform_cone_to_square, uniform_hemisphere_pdf, uniform_hemisphere_to_square,
     uniform_sphere_pdf, uniform_sphere_to_square,
+};
+pub use spherical_polygon::{
+    rectangle_solid_angle, square_to_spherical_rectangle, square_to_spherical_triangle,
+    triangle_solid_angle,
 };
