@@ -30,6 +30,24 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 W, H, D = 8.0, 3.0, 16.0  # hall: x in [-W/2, W/2], y in [0, H], z in [-D, 0]
 
 
+def emissive_ply(name, rgb):
+    """A black, area-emitting shape read from NAME.ply beside the scene."""
+    return (f'    <shape type="ply" id="{name}">\n'
+            f'      <string name="filename" value="{name}.ply"/>\n'
+            f'      <ref id="black"/>\n'
+            f'      <emitter type="area"><rgb name="radiance" value="{rgb}"/></emitter>\n'
+            f'    </shape>\n')
+
+
+def write_scene(filename, xml, body, emissive_triangles):
+    """Closes the scene document and writes it beside this script."""
+    xml.append(body.rstrip("\n"))
+    xml.append("</scene>\n")
+    with open(os.path.join(HERE, filename), "w") as fh:
+        fh.write("\n".join(xml))
+    print(f"{filename}: {emissive_triangles} emissive triangles")
+
+
 def write_ply(path, quads):
     """Binary little-endian PLY of quads or triangles (each 4 or 3 corners,
     counter-clockwise seen from the emitting side)."""
@@ -145,16 +163,8 @@ def hall():
                                (-2.0, -10, 0.5, 0.4, 0.8), (0.8, -12.5, 0.3, 1.2, 0.3)]:
         body += box(cx, cz, sx, sy, sz)
     for name, rgb in radiance.items():
-        body += (f'    <shape type="ply" id="{name}">\n'
-                 f'      <string name="filename" value="{name}.ply"/>\n'
-                 f'      <ref id="black"/>\n'
-                 f'      <emitter type="area"><rgb name="radiance" value="{rgb}"/></emitter>\n'
-                 f'    </shape>\n')
-    xml.append(body.rstrip("\n"))
-    xml.append("</scene>\n")
-    with open(os.path.join(HERE, "manylights.xml"), "w") as fh:
-        fh.write("\n".join(xml))
-    print(f"manylights.xml: {triangles} emissive triangles")
+        body += emissive_ply(name, rgb)
+    write_scene("manylights.xml", xml, body, triangles)
 
 
 CITY = 64.0     # the city: x and z in [-CITY/2, CITY/2]
@@ -238,16 +248,8 @@ def city():
     for cx, cz, half, height in city_buildings():
         body += box(cx, cz, half, height / 2, half)
     for k, rgb in enumerate(colours):
-        body += (f'    <shape type="ply" id="city_lamps{k}">\n'
-                 f'      <string name="filename" value="city_lamps{k}.ply"/>\n'
-                 f'      <ref id="black"/>\n'
-                 f'      <emitter type="area"><rgb name="radiance" value="{rgb}"/></emitter>\n'
-                 f'    </shape>\n')
-    xml.append(body.rstrip("\n"))
-    xml.append("</scene>\n")
-    with open(os.path.join(HERE, "city.xml"), "w") as fh:
-        fh.write("\n".join(xml))
-    print(f"city.xml: {count} emissive triangles")
+        body += emissive_ply(f"city_lamps{k}", rgb)
+    write_scene("city.xml", xml, body, count)
 
 
 def main():
