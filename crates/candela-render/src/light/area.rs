@@ -100,16 +100,6 @@ impl AreaShape {
 }
 
 impl AreaLight {
-    /// The radiance leaving the light at a point with outward normal `n`
-    /// toward direction `w`: `radiance` on the emitting side, else zero.
-    pub fn emitted(&self, n: Vec3, w: Vec3) -> Vec3 {
-        if n.dot(w) > 0.0 {
-            self.radiance
-        } else {
-            Vec3::ZERO
-        }
-    }
-
     pub(super) fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         self.sample_li_with_area(p, u, self.shape.area())
     }
