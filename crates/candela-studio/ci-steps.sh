@@ -19,6 +19,7 @@ if ! "$venv/bin/python" -c "import playwright, pytest" 2>/dev/null; then
   "$venv/bin/pip" install -q playwright pytest
 fi
 
-cargo build --release -p candela-cli
-CANDELA_BIN="$PWD/target/release/candela" "$venv/bin/python" -m pytest -q -p no:cacheprovider \
+# The test profile's binary, which `cargo test` has built (no LTO build).
+cargo build --profile test -p candela-cli
+CANDELA_BIN="$PWD/target/debug/candela" "$venv/bin/python" -m pytest -q -p no:cacheprovider \
   crates/candela-studio/tests/browser

@@ -123,7 +123,10 @@ impl Studio {
             serde_json::to_value(settings_form::describe(&settings)).map_err(|e| e.to_string())?;
         Ok(Studio {
             shared: Arc::new(Shared {
-                token: opts.token.unwrap_or_else(token::new_token),
+                token: match opts.token {
+                    Some(token) => token,
+                    None => token::new_token()?,
+                },
                 source: Arc::new(source),
                 scene_info,
                 mesh: mesh::to_bytes(&triangles),

@@ -4,27 +4,18 @@
 //! only in the URL the user opens, keeps other pages from driving the
 //! renderer or reading the scene.
 
-use std::collections::hash_map::RandomState;
-use std::hash::{BuildHasher, Hasher};
-use std::time::{SystemTime, UNIX_EPOCH};
-
-/// A fresh random token of 32 hexadecimal digits. The randomness is the
-/// standard library's per-process hash keys (seeded from the operating
-/// system), mixed with the time and the process id.
-pub fn new_token() -> String {
-    let mut out = String::new();
-    for round in 0..2u64 {
-        let mut h = RandomState::new().build_hasher();
-        h.write_u64(round);
-        h.write_u128(
-            SystemTime::now()
-                .duration_since(UNIX_EPOCH)
-                .map_or(0, |d| d.as_nanos()),
-        );
-        h.write_u32(std::process::id());
-        out.push_str(&format!("{:016x}", h.finish()));
-    }
-    out
+/// A fresh random token of 32 hexadecimal digits: 128 bits from the
+/// operating system's random source (`getrandom`), so nobody can guess it
+/// from the time or the process id.
+///
+/// # Errors
+/// When the operating system gives no randomness (the studio then does not
+/// start: a guessable token would let any page in).
+pub fn new_token() -> Result<String, String> {
+    let mut bytes = [0u8; 16];
+    getrandom::fill(&mut bytes)
+        .map_err(|e| format!("no random token for the studio from the operating system: {e}"))?;
+    Ok(bytes.iter().map(|b| format!("{b:02x}")).collect())
 }
 
 /// Whether a request's query string carries `token`. Compares in time
@@ -49,7 +40,7 @@ mod tests {
 
     #[test]
     fn tokens_differ_and_are_hex() {
-        let (a, b) = (new_token(), new_token());
+        let (a, b) = (new_token().unwrap(), new_token().unwrap());
         assert_ne!(a, b);
         assert_eq!(a.len(), 32);
         assert!(a.chars().all(|c| c.is_ascii_hexdigit()));
