@@ -41,6 +41,10 @@ pub(super) struct Bounds4 {
     /// cos θo and sin θo of the cones of normals.
     cos_o: Vec4,
     sin_o: Vec4,
+    /// 2 sin(θo/2) = |m − axis| for a normal m at θo from the axis: how
+    /// far the emitters' planes may tilt from the axis's (the half-space
+    /// test).
+    chord: Vec4,
     /// cos θe, the emission spread.
     cos_e: Vec4,
     /// Powers.
@@ -83,6 +87,7 @@ impl Bounds4 {
             radius: radius2.sqrt(),
             cos_o,
             sin_o: sin_of(cos_o),
+            chord: (2.0 * (Vec4::ONE - cos_o)).max(Vec4::ZERO).sqrt(),
             cos_e: lane(&|g| g.cos_e, 0.0),
             phi: lane(&|g| g.phi, 0.0),
         }
@@ -100,11 +105,17 @@ impl Bounds4 {
         let n = [ctx.n.x, ctx.n.y, ctx.n.z].map(Vec4::splat);
         let n_abs = [ctx.n.x.abs(), ctx.n.y.abs(), ctx.n.z.abs()].map(Vec4::splat);
         let axis_abs = self.axis.map(Vec4::abs);
+        let d2 = dot3(&to_p, &to_p);
+        let d = d2.sqrt();
         // Exact half-space tests on the boxes, tighter than the cones of
         // their bounding spheres: the box lies wholly below a one-sided
         // receiver's horizon, or the point lies behind every emitter's
-        // plane of a group with one orientation. max over the box of
-        // v · (q − p) = |v| · half − v · (p − c).
+        // plane. max over the box of v · (q − p) = |v| · half − v · (p − c);
+        // a normal m within θo of the axis a adds at most
+        // |m − a| · |q − p| ≤ 2 sin(θo/2) · (d + r), so that a group of
+        // nearly parallel emitters (a wall of lamps, slightly bent) is
+        // still cut at a point just behind it (emitters send light only to
+        // the front of their plane: cos θe ≥ 0).
         let n_dot = dot3(&n, &to_p);
         let mut dark = if !ctx.two_sided && has_normal {
             (dot3(&n_abs, &self.half) - n_dot).cmple(Vec4::ZERO)
@@ -112,10 +123,10 @@ impl Bounds4 {
             BVec4A::FALSE
         };
         let axis_dot = dot3(&self.axis, &to_p);
-        dark |= self.cos_o.cmpge(Vec4::ONE)
-            & (dot3(&axis_abs, &self.half) + axis_dot).cmple(Vec4::ZERO);
+        dark |= self.cos_e.cmpge(Vec4::ZERO)
+            & (dot3(&axis_abs, &self.half) + axis_dot + self.chord * (d + self.radius))
+                .cmple(Vec4::ZERO);
 
-        let d2 = dot3(&to_p, &to_p);
         // Inside the bounding sphere every direction is possible: both
         // cosine bounds are 1 and the distance is clamped to the radius.
         let inside = d2.cmple(self.radius2);
@@ -125,7 +136,7 @@ impl Bounds4 {
             Vec4::ZERO,
         );
 
-        let inv_d = d2.sqrt().recip();
+        let inv_d = d.recip();
         // The directions to the box lie within θb of the direction from
         // its centre to the point.
         let sin_b = (self.radius * inv_d).min(Vec4::ONE);

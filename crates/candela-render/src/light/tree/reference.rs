@@ -93,9 +93,9 @@ impl LightBounds {
 impl LightBounds {
     /// Exact half-space tests on the box, tighter than the cones of its
     /// bounding sphere that [`LightBounds::importance`] uses: the whole box
-    /// lies below a one-sided receiver's horizon, or (for emitters that
-    /// all share the normal `axis`, such as a grid of lamps) the point lies
-    /// behind every emitter's plane. Cutting such groups at the parent
+    /// lies below a one-sided receiver's horizon, or the point lies behind
+    /// every emitter's plane (emitters whose normals are all within θo of
+    /// `axis`, such as a grid of lamps). Cutting such groups at the parent
     /// keeps the walk from entering nodes whose children are all dark.
     fn behind(&self, ctx: &LightContext) -> bool {
         let center = self.centroid();
@@ -103,8 +103,12 @@ impl LightBounds {
         // max over the box of v · (q − p) = v · (c − p) + |v| · half.
         let reach = |v: Vec3| v.dot(center - ctx.p) + v.abs().dot(half);
         let below_horizon = !ctx.two_sided && ctx.n != Vec3::ZERO && reach(ctx.n) <= 0.0;
-        // Emits toward p from q only if axis · (p − q) > 0.
-        let behind_emitters = self.cos_o >= 1.0 && reach(-self.axis) <= 0.0;
+        // Emits toward p from q only if m · (p − q) > 0 for its normal m,
+        // and m · (p − q) ≤ axis · (p − q) + |m − axis| · |p − q|, with
+        // |m − axis| ≤ 2 sin(θo / 2) and |p − q| ≤ d + r.
+        let tilt = (2.0 * (1.0 - self.cos_o)).max(0.0).sqrt()
+            * ((ctx.p - center).length() + half.length());
+        let behind_emitters = self.cos_e >= 0.0 && reach(-self.axis) + tilt <= 0.0;
         below_horizon || behind_emitters
     }
 }
