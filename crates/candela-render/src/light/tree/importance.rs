@@ -18,6 +18,20 @@
 //! positive probability and the estimator stays unbiased. `reference.rs`
 //! (tests only) holds the bound written plainly, which this must match.
 //!
+//! The weight the walk uses is not the bound itself but an estimate that
+//! is positive exactly where the bound is: the same cosines taken toward a
+//! sphere of a quarter of the bounding radius ([`ESTIMATE_RADIUS`]), at
+//! least [`BOUND_FLOOR`] of the bound's. The bound's cosines are the worst
+//! case over the whole box, so a large group far to the side (a half of a
+//! hall's ceiling seen from the floor) gets cosines near 1 where most of
+//! its lamps make steep angles, and takes samples from the lamps overhead;
+//! a sample proportional to the bound is unbiased but wastes them. In the
+//! many-lights hall this lowers the one-sample variance of unoccluded
+//! direct light at the camera's points by 32 %, in the city by 42 %
+//! (BENCHMARKS.md); the floor keeps every group the bound lets through at
+//! a share of at least 0.3 of what the bound alone would give it, so
+//! choices stay unbiased and the variance bounded.
+//!
 //! The walk evaluates one such pass per level for every light sample and
 //! for the MIS pmf of every emitter a BSDF sample finds, so this is the
 //! tree's inner loop: the boxes' centres, their bounding spheres' radii and
@@ -25,6 +39,14 @@
 //! reciprocal, and the branches of the bound become lane selects.
 use super::{LightBounds, LightContext};
 use glam::{BVec4A, Vec3, Vec4};
+
+/// The estimate's cosines are taken toward a sphere of this fraction of
+/// each box's bounding radius (the bound takes the whole sphere).
+pub(super) const ESTIMATE_RADIUS: f32 = 0.25;
+
+/// The estimate is at least this fraction of the bound (where the bound is
+/// positive).
+pub(super) const BOUND_FLOOR: f32 = 0.3;
 
 /// Up to four groups' bounds, one per lane (unused lanes: zero power).
 #[derive(Clone, Copy, Debug)]
@@ -93,7 +115,8 @@ impl Bounds4 {
         }
     }
 
-    /// The importance of each lane's group at `ctx` (the module docs).
+    /// The importance of each lane's group at `ctx`: the estimate, zero
+    /// exactly where the bound is (the module docs).
     #[inline]
     pub(super) fn importance(&self, ctx: &LightContext) -> [f32; 4] {
         let to_p = [
@@ -149,17 +172,24 @@ impl Bounds4 {
         let sin_x = Vec4::select(within, Vec4::ZERO, sin_w * self.cos_o - cos_w * self.sin_o);
         let cos_emit = cos_sub_clamped(cos_x, sin_x, cos_b, sin_b);
         let mut outside_dark = cos_emit.cmple(self.cos_e);
-        let mut value = self.phi * cos_emit / d2;
+        // The estimate's cone toward the box (the module docs).
+        let sin_near = sin_b * ESTIMATE_RADIUS;
+        let cos_near = sin_of(sin_near);
+        let mut bound = cos_emit;
+        let mut estimate = cos_sub_clamped(cos_x, sin_x, cos_near, sin_near).max(Vec4::ZERO);
         if has_normal {
             let cos_n = n_dot * inv_d;
             let cos_i =
                 if ctx.two_sided { cos_n.abs() } else { -cos_n }.clamp(-Vec4::ONE, Vec4::ONE);
-            let cos_receive = cos_sub_clamped(cos_i, sin_of(cos_i), cos_b, sin_b);
+            let sin_i = sin_of(cos_i);
+            let cos_receive = cos_sub_clamped(cos_i, sin_i, cos_b, sin_b);
             if !ctx.two_sided {
                 outside_dark |= cos_receive.cmple(Vec4::ZERO);
             }
-            value *= cos_receive.max(Vec4::ZERO);
+            bound *= cos_receive.max(Vec4::ZERO);
+            estimate *= cos_sub_clamped(cos_i, sin_i, cos_near, sin_near).max(Vec4::ZERO);
         }
+        let value = self.phi / d2 * estimate.max(BOUND_FLOOR * bound);
         let value = Vec4::select(outside_dark, Vec4::ZERO, value);
         let value = Vec4::select(inside, inside_value, value);
         Vec4::select(dark, Vec4::ZERO, value)

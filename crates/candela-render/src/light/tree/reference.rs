@@ -1,8 +1,9 @@
 //! A reference for the importance: the bound of Conty Estevez and Kulla
-//! (2018, §4.1-4.3) written plainly from [`LightBounds`], as the light tree
-//! used it first, against which the precomputed form of `importance.rs`
-//! is checked.
+//! (2018, §4.1-4.3) and the estimate the walk weighs by, written plainly
+//! from [`LightBounds`], against which the precomputed form of
+//! `importance.rs` is checked.
 
+use super::importance::{BOUND_FLOOR, ESTIMATE_RADIUS};
 use super::{LightBounds, LightContext};
 use glam::Vec3;
 
@@ -35,8 +36,11 @@ impl LightBounds {
     /// the smallest angle any emitter in the box can make with the
     /// direction to the point, times the cosine of the smallest angle any
     /// point of the box can make with the receiver's normal (no such term
-    /// without a normal). Zero only where no emitter of the group can
-    /// reach the point (see the module docs).
+    /// without a normal): the bound. The importance the walk uses is an
+    /// estimate, the same cosines toward a sphere of a quarter of the
+    /// radius, at least 0.3 of the bound's; zero exactly where the bound
+    /// is, that is only where no emitter of the group can reach the point
+    /// (see `importance.rs`).
     pub(super) fn importance(&self, ctx: &LightContext) -> f32 {
         if self.behind(ctx) {
             return 0.0;
@@ -70,7 +74,15 @@ impl LightBounds {
         if cos_emit <= self.cos_e {
             return 0.0;
         }
-        let mut importance = self.phi * cos_emit / d2.max(half_diagonal2);
+        if d2 <= half_diagonal2 {
+            return self.phi / half_diagonal2;
+        }
+        // The estimate: the same cosines toward a sphere of a quarter of
+        // the radius, at least 0.3 of the bound's.
+        let sin_near = ESTIMATE_RADIUS * sin_b;
+        let cos_near = sin_of(sin_near);
+        let mut estimate = cos_sub_clamped(sin_x, cos_x, sin_near, cos_near).max(0.0);
+        let mut bound = cos_emit;
         if ctx.n != Vec3::ZERO {
             // Smallest angle between the receiver's normal and a direction
             // toward the box (either side of the surface when it transmits).
@@ -84,9 +96,10 @@ impl LightBounds {
             if cos_receive <= 0.0 && !ctx.two_sided {
                 return 0.0;
             }
-            importance *= cos_receive.max(0.0);
+            bound *= cos_receive.max(0.0);
+            estimate *= cos_sub_clamped(sin_of(cos_i), cos_i, sin_near, cos_near).max(0.0);
         }
-        importance.max(0.0)
+        (self.phi / d2 * estimate.max(BOUND_FLOOR * bound)).max(0.0)
     }
 }
 
