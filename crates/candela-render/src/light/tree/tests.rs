@@ -324,8 +324,8 @@ fn a_point_just_behind_a_grid_of_lamps_wastes_no_walk() {
             let (x, z) = (i as f32 * 0.25, j as f32 * 0.25);
             let s = 0.04 * (1.0 + 0.125 * ((i * 7 + j * 13) % 5) as f32);
             let y = 2.99;
-            let [a, b, c, d] = [(-s, -s), (s, -s), (s, s), (-s, s)]
-                .map(|(dx, dz)| Vec3::new(x + dx, y, z + dz));
+            let [a, b, c, d] =
+                [(-s, -s), (s, -s), (s, s), (-s, s)].map(|(dx, dz)| Vec3::new(x + dx, y, z + dz));
             // Counter-clockwise seen from below: normal -Y.
             lights.push(triangle([a, b, c], 1.0));
             lights.push(triangle([a, c, d], 1.0));
