@@ -107,7 +107,10 @@ impl LightBounds {
 fn cone_union(a: (Vec3, f32), b: (Vec3, f32)) -> (Vec3, f32) {
     let theta_a = a.1.clamp(-1.0, 1.0).acos();
     let theta_b = b.1.clamp(-1.0, 1.0).acos();
-    let theta_d = a.0.dot(b.0).clamp(-1.0, 1.0).acos();
+    // The angle between the axes as 2 atan(|a − b| / |a + b|), exact near
+    // 0 where acos(a · b) is not: two normals of one plane whose lengths
+    // differ by an ulp have a · b one ulp below 1, whose acos is 3.5e-4.
+    let theta_d = 2.0 * (a.0 - b.0).length().atan2((a.0 + b.0).length());
     if (theta_d + theta_b).min(PI) <= theta_a {
         return a;
     }
@@ -121,7 +124,15 @@ fn cone_union(a: (Vec3, f32), b: (Vec3, f32)) -> (Vec3, f32) {
     // Turn a's axis toward b's by θo − θa.
     let normal = a.0.cross(b.0);
     if normal.length_squared() < 1e-12 {
-        return (a.0, -1.0);
+        // (Anti)parallel axes: no rotation to make, so no rounding to
+        // allow for. Axes that differ by rounding (the normals of a grid of
+        // lamps) keep a's axis, widened to hold b: a cone of one direction
+        // stays one (cos θo = 1, which the exact half-space test of the
+        // importance needs); opposite axes take the whole sphere.
+        if a.0.dot(b.0) < 0.0 {
+            return (a.0, -1.0);
+        }
+        return (a.0, theta_a.max(theta_d + theta_b).min(PI).cos());
     }
     let turn = Quat::from_axis_angle(normal.normalize(), theta_o - CONE_SLACK - theta_a);
     ((turn * a.0).normalize(), theta_o.cos())
@@ -130,6 +141,21 @@ fn cone_union(a: (Vec3, f32), b: (Vec3, f32)) -> (Vec3, f32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Normals of one plane computed from triangles of different sizes
+    /// differ by an ulp; merged, they stay a cone of one direction (cos θo
+    /// = 1, which the importance's exact half-space test needs), and
+    /// opposite normals make the whole sphere.
+    #[test]
+    fn parallel_cones_stay_a_single_direction() {
+        let down = Vec3::new(0.0, -1.0, 0.0);
+        let rounded = Vec3::new(0.0, -0.99999994, 0.0);
+        assert_eq!(cone_union((down, 1.0), (rounded, 1.0)), (down, 1.0));
+        assert_eq!(cone_union((rounded, 1.0), (down, 1.0)), (rounded, 1.0));
+        let (_, cos) = cone_union((down, 0.5), (rounded, 1.0));
+        assert_eq!(cos, 0.5);
+        assert_eq!(cone_union((down, 1.0), (-rounded, 1.0)).1, -1.0);
+    }
 
     /// Merged cones hold every direction of both (checked on their rims).
     #[test]

@@ -18,6 +18,23 @@
 //! positive probability and the estimator stays unbiased. `reference.rs`
 //! (tests only) holds the bound written plainly, which this must match.
 //!
+//! The weight the walk uses is not the bound itself but an estimate that
+//! is positive exactly where the bound is: the same cosines taken toward a
+//! sphere of a quarter of the bounding radius ([`ESTIMATE_RADIUS`]), at
+//! least [`BOUND_FLOOR`] of the bound's. The bound's cosines are the worst
+//! case over the whole box, so a large group far to the side (a half of a
+//! hall's ceiling seen from the floor) gets cosines near 1 where most of
+//! its lamps make steep angles, and takes samples from the lamps overhead;
+//! a sample proportional to the bound is unbiased but wastes them. At the
+//! points the camera sees, this lowers the one-sample variance of direct
+//! light (shadows included) by 32 % in the many-lights hall and by 42 % in
+//! the city (BENCHMARKS.md; the two constants were chosen there among six
+//! pairs, and a radius fraction from 0.15 to 0.35 does about as well); the
+//! floor keeps every group the bound lets through at a share of at least
+//! 0.3 of what the bound alone would give it, so choices stay unbiased and
+//! the variance bounded. Inside a group's bounding sphere the weight stays
+//! the bound's (power over radius², no cosines).
+//!
 //! The walk evaluates one such pass per level for every light sample and
 //! for the MIS pmf of every emitter a BSDF sample finds, so this is the
 //! tree's inner loop: the boxes' centres, their bounding spheres' radii and
@@ -25,6 +42,14 @@
 //! reciprocal, and the branches of the bound become lane selects.
 use super::{LightBounds, LightContext};
 use glam::{BVec4A, Vec3, Vec4};
+
+/// The estimate's cosines are taken toward a sphere of this fraction of
+/// each box's bounding radius (the bound takes the whole sphere).
+pub(super) const ESTIMATE_RADIUS: f32 = 0.25;
+
+/// The estimate is at least this fraction of the bound (where the bound is
+/// positive).
+pub(super) const BOUND_FLOOR: f32 = 0.3;
 
 /// Up to four groups' bounds, one per lane (unused lanes: zero power).
 #[derive(Clone, Copy, Debug)]
@@ -41,6 +66,10 @@ pub(super) struct Bounds4 {
     /// cos θo and sin θo of the cones of normals.
     cos_o: Vec4,
     sin_o: Vec4,
+    /// 2 sin(θo/2) = |m − axis| for a normal m at θo from the axis: how
+    /// far the emitters' planes may tilt from the axis's (the half-space
+    /// test).
+    chord: Vec4,
     /// cos θe, the emission spread.
     cos_e: Vec4,
     /// Powers.
@@ -83,12 +112,14 @@ impl Bounds4 {
             radius: radius2.sqrt(),
             cos_o,
             sin_o: sin_of(cos_o),
+            chord: (2.0 * (Vec4::ONE - cos_o)).max(Vec4::ZERO).sqrt(),
             cos_e: lane(&|g| g.cos_e, 0.0),
             phi: lane(&|g| g.phi, 0.0),
         }
     }
 
-    /// The importance of each lane's group at `ctx` (the module docs).
+    /// The importance of each lane's group at `ctx`: the estimate, zero
+    /// exactly where the bound is (the module docs).
     #[inline]
     pub(super) fn importance(&self, ctx: &LightContext) -> [f32; 4] {
         let to_p = [
@@ -100,11 +131,17 @@ impl Bounds4 {
         let n = [ctx.n.x, ctx.n.y, ctx.n.z].map(Vec4::splat);
         let n_abs = [ctx.n.x.abs(), ctx.n.y.abs(), ctx.n.z.abs()].map(Vec4::splat);
         let axis_abs = self.axis.map(Vec4::abs);
+        let d2 = dot3(&to_p, &to_p);
+        let d = d2.sqrt();
         // Exact half-space tests on the boxes, tighter than the cones of
         // their bounding spheres: the box lies wholly below a one-sided
         // receiver's horizon, or the point lies behind every emitter's
-        // plane of a group with one orientation. max over the box of
-        // v · (q − p) = |v| · half − v · (p − c).
+        // plane. max over the box of v · (q − p) = |v| · half − v · (p − c);
+        // a normal m within θo of the axis a adds at most
+        // |m − a| · |q − p| ≤ 2 sin(θo/2) · (d + r), so that a group of
+        // nearly parallel emitters (a wall of lamps, slightly bent) is
+        // still cut at a point just behind it (emitters send light only to
+        // the front of their plane: cos θe ≥ 0).
         let n_dot = dot3(&n, &to_p);
         let mut dark = if !ctx.two_sided && has_normal {
             (dot3(&n_abs, &self.half) - n_dot).cmple(Vec4::ZERO)
@@ -112,10 +149,10 @@ impl Bounds4 {
             BVec4A::FALSE
         };
         let axis_dot = dot3(&self.axis, &to_p);
-        dark |= self.cos_o.cmpge(Vec4::ONE)
-            & (dot3(&axis_abs, &self.half) + axis_dot).cmple(Vec4::ZERO);
+        dark |= self.cos_e.cmpge(Vec4::ZERO)
+            & (dot3(&axis_abs, &self.half) + axis_dot + self.chord * (d + self.radius))
+                .cmple(Vec4::ZERO);
 
-        let d2 = dot3(&to_p, &to_p);
         // Inside the bounding sphere every direction is possible: both
         // cosine bounds are 1 and the distance is clamped to the radius.
         let inside = d2.cmple(self.radius2);
@@ -125,7 +162,7 @@ impl Bounds4 {
             Vec4::ZERO,
         );
 
-        let inv_d = d2.sqrt().recip();
+        let inv_d = d.recip();
         // The directions to the box lie within θb of the direction from
         // its centre to the point.
         let sin_b = (self.radius * inv_d).min(Vec4::ONE);
@@ -138,17 +175,24 @@ impl Bounds4 {
         let sin_x = Vec4::select(within, Vec4::ZERO, sin_w * self.cos_o - cos_w * self.sin_o);
         let cos_emit = cos_sub_clamped(cos_x, sin_x, cos_b, sin_b);
         let mut outside_dark = cos_emit.cmple(self.cos_e);
-        let mut value = self.phi * cos_emit / d2;
+        // The estimate's cone toward the box (the module docs).
+        let sin_near = sin_b * ESTIMATE_RADIUS;
+        let cos_near = sin_of(sin_near);
+        let mut bound = cos_emit;
+        let mut estimate = cos_sub_clamped(cos_x, sin_x, cos_near, sin_near).max(Vec4::ZERO);
         if has_normal {
             let cos_n = n_dot * inv_d;
             let cos_i =
                 if ctx.two_sided { cos_n.abs() } else { -cos_n }.clamp(-Vec4::ONE, Vec4::ONE);
-            let cos_receive = cos_sub_clamped(cos_i, sin_of(cos_i), cos_b, sin_b);
+            let sin_i = sin_of(cos_i);
+            let cos_receive = cos_sub_clamped(cos_i, sin_i, cos_b, sin_b);
             if !ctx.two_sided {
                 outside_dark |= cos_receive.cmple(Vec4::ZERO);
             }
-            value *= cos_receive.max(Vec4::ZERO);
+            bound *= cos_receive.max(Vec4::ZERO);
+            estimate *= cos_sub_clamped(cos_i, sin_i, cos_near, sin_near).max(Vec4::ZERO);
         }
+        let value = self.phi / d2 * estimate.max(BOUND_FLOOR * bound);
         let value = Vec4::select(outside_dark, Vec4::ZERO, value);
         let value = Vec4::select(inside, inside_value, value);
         Vec4::select(dark, Vec4::ZERO, value)

@@ -1,8 +1,9 @@
 //! A reference for the importance: the bound of Conty Estevez and Kulla
-//! (2018, §4.1-4.3) written plainly from [`LightBounds`], as the light tree
-//! used it first, against which the precomputed form of `importance.rs`
-//! is checked.
+//! (2018, §4.1-4.3) and the estimate the walk weighs by, written plainly
+//! from [`LightBounds`], against which the precomputed form of
+//! `importance.rs` is checked.
 
+use super::importance::{BOUND_FLOOR, ESTIMATE_RADIUS};
 use super::{LightBounds, LightContext};
 use glam::Vec3;
 
@@ -35,8 +36,11 @@ impl LightBounds {
     /// the smallest angle any emitter in the box can make with the
     /// direction to the point, times the cosine of the smallest angle any
     /// point of the box can make with the receiver's normal (no such term
-    /// without a normal). Zero only where no emitter of the group can
-    /// reach the point (see the module docs).
+    /// without a normal): the bound. The importance the walk uses is an
+    /// estimate, the same cosines toward a sphere of a quarter of the
+    /// radius, at least 0.3 of the bound's; zero exactly where the bound
+    /// is, that is only where no emitter of the group can reach the point
+    /// (see `importance.rs`).
     pub(super) fn importance(&self, ctx: &LightContext) -> f32 {
         if self.behind(ctx) {
             return 0.0;
@@ -70,7 +74,15 @@ impl LightBounds {
         if cos_emit <= self.cos_e {
             return 0.0;
         }
-        let mut importance = self.phi * cos_emit / d2.max(half_diagonal2);
+        if d2 <= half_diagonal2 {
+            return self.phi / half_diagonal2;
+        }
+        // The estimate: the same cosines toward a sphere of a quarter of
+        // the radius, at least 0.3 of the bound's.
+        let sin_near = ESTIMATE_RADIUS * sin_b;
+        let cos_near = sin_of(sin_near);
+        let mut estimate = cos_sub_clamped(sin_x, cos_x, sin_near, cos_near).max(0.0);
+        let mut bound = cos_emit;
         if ctx.n != Vec3::ZERO {
             // Smallest angle between the receiver's normal and a direction
             // toward the box (either side of the surface when it transmits).
@@ -84,18 +96,19 @@ impl LightBounds {
             if cos_receive <= 0.0 && !ctx.two_sided {
                 return 0.0;
             }
-            importance *= cos_receive.max(0.0);
+            bound *= cos_receive.max(0.0);
+            estimate *= cos_sub_clamped(sin_of(cos_i), cos_i, sin_near, cos_near).max(0.0);
         }
-        importance.max(0.0)
+        (self.phi / d2 * estimate.max(BOUND_FLOOR * bound)).max(0.0)
     }
 }
 
 impl LightBounds {
     /// Exact half-space tests on the box, tighter than the cones of its
     /// bounding sphere that [`LightBounds::importance`] uses: the whole box
-    /// lies below a one-sided receiver's horizon, or (for emitters that
-    /// all share the normal `axis`, such as a grid of lamps) the point lies
-    /// behind every emitter's plane. Cutting such groups at the parent
+    /// lies below a one-sided receiver's horizon, or the point lies behind
+    /// every emitter's plane (emitters whose normals are all within θo of
+    /// `axis`, such as a grid of lamps). Cutting such groups at the parent
     /// keeps the walk from entering nodes whose children are all dark.
     fn behind(&self, ctx: &LightContext) -> bool {
         let center = self.centroid();
@@ -103,8 +116,12 @@ impl LightBounds {
         // max over the box of v · (q − p) = v · (c − p) + |v| · half.
         let reach = |v: Vec3| v.dot(center - ctx.p) + v.abs().dot(half);
         let below_horizon = !ctx.two_sided && ctx.n != Vec3::ZERO && reach(ctx.n) <= 0.0;
-        // Emits toward p from q only if axis · (p − q) > 0.
-        let behind_emitters = self.cos_o >= 1.0 && reach(-self.axis) <= 0.0;
+        // Emits toward p from q only if m · (p − q) > 0 for its normal m,
+        // and m · (p − q) ≤ axis · (p − q) + |m − axis| · |p − q|, with
+        // |m − axis| ≤ 2 sin(θo / 2) and |p − q| ≤ d + r.
+        let tilt = (2.0 * (1.0 - self.cos_o)).max(0.0).sqrt()
+            * ((ctx.p - center).length() + half.length());
+        let behind_emitters = self.cos_e >= 0.0 && reach(-self.axis) + tilt <= 0.0;
         below_horizon || behind_emitters
     }
 }

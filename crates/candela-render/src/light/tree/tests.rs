@@ -309,3 +309,51 @@ fn a_single_hidden_light_is_not_chosen() {
     let front = LightContext::surface(Vec3::ZERO, -Vec3::Z, false);
     assert_eq!(tree.choose(&front, 0.5), Some((0, 1.0)));
 }
+
+/// A ceiling of small lamps facing down (a 32 × 32 grid of quads of
+/// several sizes, as in the many-lights hall, whose computed normals
+/// differ in the last bit) and a wall of lamps facing in: at a point on
+/// the ceiling 1 cm behind the lamps, the walk goes to the wall lamps and
+/// loses no mass in subtrees of ceiling lamps (it lost 96 % when merging
+/// two nearly equal normals made a whole-sphere cone).
+#[test]
+fn a_point_just_behind_a_grid_of_lamps_wastes_no_walk() {
+    let mut lights = Vec::new();
+    for j in 0..32 {
+        for i in 0..32 {
+            let (x, z) = (i as f32 * 0.25, j as f32 * 0.25);
+            let s = 0.04 * (1.0 + 0.125 * ((i * 7 + j * 13) % 5) as f32);
+            let y = 2.99;
+            let [a, b, c, d] =
+                [(-s, -s), (s, -s), (s, s), (-s, s)].map(|(dx, dz)| Vec3::new(x + dx, y, z + dz));
+            // Counter-clockwise seen from below: normal -Y.
+            lights.push(triangle([a, b, c], 1.0));
+            lights.push(triangle([a, c, d], 1.0));
+        }
+    }
+    let ceiling = lights.len();
+    for j in 0..8 {
+        for i in 0..16 {
+            let (y, z) = (2.2 + j as f32 * 0.1, i as f32 * 0.5);
+            let (a, b, c) = (
+                Vec3::new(-0.01, y, z),
+                Vec3::new(-0.01, y + 0.03, z),
+                Vec3::new(-0.01, y, z + 0.03),
+            );
+            // Normal +X, toward the ceiling lamps' side of the room.
+            lights.push(triangle([a, b, c], 10.0));
+        }
+    }
+    let set = LightSet::new(lights, &[], 20.0);
+    let tree = set.tree();
+    let mut rng = SplitMix64::new(15);
+    for _ in 0..20 {
+        let p = Vec3::new(rng.range(0.5, 7.5), 3.0, rng.range(0.5, 7.5));
+        let ctx = LightContext::surface(p, -Vec3::Y, false);
+        let dark = tree.dark_probability(&ctx);
+        assert!(dark < 1e-6, "{dark} of the walk lost at {p}");
+        for i in 0..ceiling as u32 {
+            assert_eq!(tree.pmf(&ctx, i), 0.0, "ceiling lamp {i} behind {p}");
+        }
+    }
+}
