@@ -259,7 +259,13 @@ fn emit<const W: usize>(
                 let b = &bin[i];
                 out[me].set_lane(lane, b.bounds());
                 out[me].child[lane] = out.len() as u32;
-                let d = emit(bin, vec![i + 1, b.offset as usize], out, depth + 1, splitter);
+                let d = emit(
+                    bin,
+                    vec![i + 1, b.offset as usize],
+                    out,
+                    depth + 1,
+                    splitter,
+                );
                 deepest = deepest.max(d);
             }
         }

@@ -23,7 +23,11 @@ pub(crate) enum Lane {
     /// An interior node of the binary tree.
     Node(usize),
     /// A leaf over slots `first .. first + count`, with its box.
-    Leaf { bounds: Aabb, first: u32, count: u32 },
+    Leaf {
+        bounds: Aabb,
+        first: u32,
+        count: u32,
+    },
 }
 
 /// Splits leaves, given the primitive boxes (by caller's id) and the

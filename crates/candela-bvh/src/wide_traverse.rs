@@ -106,6 +106,7 @@ impl<const W: usize> WideBvh<W> {
             &mut t_max,
             stats,
             no_prefetch,
+            #[inline(always)]
             |first, count, t_max| {
                 for slot in first..first + count {
                     if let Some(t) = test(slot, *t_max) {
@@ -134,13 +135,22 @@ impl<const W: usize> WideBvh<W> {
         mut test: impl FnMut(u32, u32, f32) -> Option<(u32, f32)>,
     ) -> Option<(u32, f32)> {
         let mut best = None;
-        self.walk::<true, S>(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
-            if let Some((slot, t)) = test(first, count, *t_max) {
-                *t_max = t;
-                best = Some((slot, t));
-            }
-            false
-        });
+        // `inline(always)`: the caller's leaf test is compiled into the
+        // traversal loop (with its AVX2 encoding), not called.
+        self.walk::<true, S>(
+            ray,
+            &mut t_max,
+            stats,
+            prefetch,
+            #[inline(always)]
+            |first, count, t_max| {
+                if let Some((slot, t)) = test(first, count, *t_max) {
+                    *t_max = t;
+                    best = Some((slot, t));
+                }
+                false
+            },
+        );
         best
     }
 
@@ -154,9 +164,14 @@ impl<const W: usize> WideBvh<W> {
         prefetch: impl Fn(u32, u32),
         mut test: impl FnMut(u32, u32, f32) -> bool,
     ) -> bool {
-        self.walk::<false, S>(ray, &mut t_max, stats, prefetch, |first, count, t_max| {
-            test(first, count, *t_max)
-        })
+        self.walk::<false, S>(
+            ray,
+            &mut t_max,
+            stats,
+            prefetch,
+            #[inline(always)]
+            |first, count, t_max| test(first, count, *t_max),
+        )
     }
 
     /// Any hit; same contract as [`crate::Bvh::any_hit`].
@@ -173,6 +188,7 @@ impl<const W: usize> WideBvh<W> {
             &mut t_max,
             stats,
             no_prefetch,
+            #[inline(always)]
             |first, count, t_max| (first..first + count).any(|slot| test(slot, *t_max).is_some()),
         )
     }

@@ -156,9 +156,13 @@ impl<const W: usize> Wide<W> {
         let tr4 = TriangleRay4::new(tri_ray);
         let prefetch = |first, count| self.leaves.prefetch(first, count);
         let mut hit = LeafHit::default();
-        let test = |first, count, t_max| {
-            self.leaves
-                .closest(first, count, ray, &tr4, t_max, &mut hit)
+        // Inlined into the traversal loop (see `WideBvh::closest_hit_leaves`).
+        let test = {
+            #[inline(always)]
+            |first, count, t_max| {
+                self.leaves
+                    .closest(first, count, ray, &tr4, t_max, &mut hit)
+            }
         };
         let (slot, t) = self
             .bvh
@@ -181,7 +185,10 @@ impl<const W: usize> Wide<W> {
     ) -> bool {
         let tr4 = TriangleRay4::new(tri_ray);
         let prefetch = |first, count| self.leaves.prefetch(first, count);
-        let test = |first, count, t_max| self.leaves.any(first, count, ray, &tr4, t_max);
+        let test = {
+            #[inline(always)]
+            |first, count, t_max| self.leaves.any(first, count, ray, &tr4, t_max)
+        };
         self.bvh.any_hit_leaves(q, ray.t_max, stats, prefetch, test)
     }
 }
