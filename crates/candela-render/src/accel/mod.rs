@@ -156,13 +156,9 @@ impl<const W: usize> Wide<W> {
         let tr4 = TriangleRay4::new(tri_ray);
         let prefetch = |first, count| self.leaves.prefetch(first, count);
         let mut hit = LeafHit::default();
-        // Inlined into the traversal loop (see `WideBvh::closest_hit_leaves`).
-        let test = {
-            #[inline(always)]
-            |first, count, t_max| {
-                self.leaves
-                    .closest(first, count, ray, &tr4, t_max, &mut hit)
-            }
+        let test = |first, count, t_max| {
+            self.leaves
+                .closest(first, count, ray, &tr4, t_max, &mut hit)
         };
         let (slot, t) = self
             .bvh
@@ -185,6 +181,7 @@ impl<const W: usize> Wide<W> {
     ) -> bool {
         let tr4 = TriangleRay4::new(tri_ray);
         let prefetch = |first, count| self.leaves.prefetch(first, count);
+        // Compiled into the traversal loop (see `WideBvh::any_hit_leaves`).
         let test = {
             #[inline(always)]
             |first, count, t_max| self.leaves.any(first, count, ray, &tr4, t_max)
