@@ -9,8 +9,9 @@
 //! reached (the greedy collapse of Wald et al. and of pbrt-v4's wide BVH
 //! discussions); a leaf is never opened. Leaves and the primitive order are
 //! the binary tree's, unless [`WideBvh::from_binary_filled`] then splits
-//! leaves of two SIMD blocks into the lanes still free (`wide_fill.rs`). [`Bvh4`] is traversed with SSE (baseline on x86_64),
-//! [`Bvh8`] with AVX2 where the CPU has it and two SSE halves otherwise.
+//! leaves of two SIMD blocks into the lanes still free (`wide_fill.rs`).
+//! [`Bvh4`] is traversed with SSE (baseline on x86_64), [`Bvh8`] with AVX2
+//! where the CPU has it and two SSE halves otherwise.
 
 use crate::node::Node;
 use crate::wide_fill::{Lane, LeafSplitter};
@@ -98,8 +99,8 @@ impl<const W: usize> WideBvh<W> {
 
     /// Collapses a binary BVH and fills the lanes left empty by splitting
     /// leaves of `block + 1 ..= 2 * block` primitives into two of at most
-    /// `block` (by the SAH with free box tests, largest leaf first): for callers that test leaves in
-    /// SIMD blocks of `block`. `boxes` are the primitive boxes the tree was
+    /// `block` (by the SAH with free box tests, largest leaf first): for
+    /// callers that test leaves in SIMD blocks of `block`. `boxes` are the primitive boxes the tree was
     /// built over; the primitive order is permuted within leaves. With too
     /// few boxes (not the tree's input) nothing is split.
     pub fn from_binary_filled(bvh: Bvh, boxes: &[Aabb], block: u32) -> Self {
