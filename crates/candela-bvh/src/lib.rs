@@ -19,6 +19,7 @@ pub mod simd;
 mod traverse;
 mod validate;
 mod wide;
+mod wide_fill;
 mod wide_traverse;
 mod wide_validate;
 

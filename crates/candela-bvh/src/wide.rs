@@ -8,10 +8,13 @@
 //! one the SAH deems most likely to be visited, until `W` children are
 //! reached (the greedy collapse of Wald et al. and of pbrt-v4's wide BVH
 //! discussions); a leaf is never opened. Leaves and the primitive order are
-//! the binary tree's. [`Bvh4`] is traversed with SSE (baseline on x86_64),
-//! [`Bvh8`] with AVX2 where the CPU has it and two SSE halves otherwise.
+//! the binary tree's, unless [`WideBvh::from_binary_filled`] then splits
+//! leaves of two SIMD blocks into the lanes still free (`wide_fill.rs`).
+//! [`Bvh4`] is traversed with SSE (baseline on x86_64), [`Bvh8`] with AVX2
+//! where the CPU has it and two SSE halves otherwise.
 
 use crate::node::Node;
+use crate::wide_fill::{Lane, LeafSplitter};
 use crate::{Aabb, Bvh};
 
 /// The primitive order's entry for an unused slot (see [`WideBvh::pad_leaves`]).
@@ -91,19 +94,46 @@ pub type Bvh8 = WideBvh<8>;
 impl<const W: usize> WideBvh<W> {
     /// Collapses a binary BVH, taking over its primitive order.
     pub fn from_binary(bvh: Bvh) -> Self {
-        let mut nodes = Vec::with_capacity(bvh.nodes.len() / (W / 2).max(1) + 1);
+        Self::collapse(bvh, None)
+    }
+
+    /// Collapses a binary BVH and fills the lanes left empty by splitting
+    /// leaves of `block + 1 ..= 2 * block` primitives into two of at most
+    /// `block` (by the SAH with free box tests, largest leaf first): for
+    /// callers that test leaves in SIMD blocks of `block`. `boxes` are the primitive boxes the tree was
+    /// built over; the primitive order is permuted within leaves. With too
+    /// few boxes (not the tree's input) nothing is split.
+    pub fn from_binary_filled(bvh: Bvh, boxes: &[Aabb], block: u32) -> Self {
+        let block = block.max(1);
+        Self::collapse(bvh, Some((boxes, block)))
+    }
+
+    fn collapse(bvh: Bvh, fill: Option<(&[Aabb], u32)>) -> Self {
+        let Bvh {
+            nodes: bin,
+            mut order,
+            ..
+        } = bvh;
+        let mut nodes = Vec::with_capacity(bin.len() / (W / 2).max(1) + 1);
         let mut depth = 0;
-        if !bvh.nodes.is_empty() {
-            let root = if bvh.nodes[0].is_leaf() {
+        let mut splitter = fill
+            .filter(|(boxes, _)| order.iter().all(|&i| (i as usize) < boxes.len()))
+            .map(|(boxes, block)| LeafSplitter {
+                boxes,
+                order: &mut order,
+                block,
+            });
+        if !bin.is_empty() {
+            let root = if bin[0].is_leaf() {
                 vec![0]
             } else {
-                vec![1, bvh.nodes[0].offset as usize]
+                vec![1, bin[0].offset as usize]
             };
-            depth = emit(&bvh.nodes, root, &mut nodes, 1);
+            depth = emit(&bin, root, &mut nodes, 1, &mut splitter);
         }
         Self {
             nodes: crate::on_huge_pages(nodes),
-            order: bvh.order,
+            order,
             depth,
             avx2: W == 8 && crate::avx2::has_avx2(),
         }
@@ -181,6 +211,7 @@ fn emit<const W: usize>(
     mut lanes: Vec<usize>,
     out: &mut Vec<WideNode<W>>,
     depth: u32,
+    splitter: &mut Option<LeafSplitter>,
 ) -> u32 {
     while lanes.len() < W {
         let widest = lanes
@@ -197,19 +228,47 @@ fn emit<const W: usize>(
         lanes[k] = i + 1;
         lanes.push(bin[i].offset as usize);
     }
+    let mut lanes: Vec<Lane> = lanes
+        .into_iter()
+        .map(|i| match bin[i] {
+            b if b.is_leaf() => Lane::Leaf {
+                bounds: b.bounds(),
+                first: b.offset,
+                count: b.count,
+            },
+            _ => Lane::Node(i),
+        })
+        .collect();
+    if let Some(s) = splitter {
+        s.fill(&mut lanes, W);
+    }
     let me = out.len();
     out.push(WideNode::EMPTY);
     let mut deepest = depth;
-    for (lane, &i) in lanes.iter().enumerate() {
-        let b = &bin[i];
-        out[me].set_lane(lane, b.bounds());
-        if b.is_leaf() {
-            out[me].child[lane] = b.offset;
-            out[me].count[lane] = b.count;
-        } else {
-            out[me].child[lane] = out.len() as u32;
-            let d = emit(bin, vec![i + 1, b.offset as usize], out, depth + 1);
-            deepest = deepest.max(d);
+    for (lane, l) in lanes.into_iter().enumerate() {
+        match l {
+            Lane::Leaf {
+                bounds,
+                first,
+                count,
+            } => {
+                out[me].set_lane(lane, bounds);
+                out[me].child[lane] = first;
+                out[me].count[lane] = count;
+            }
+            Lane::Node(i) => {
+                let b = &bin[i];
+                out[me].set_lane(lane, b.bounds());
+                out[me].child[lane] = out.len() as u32;
+                let d = emit(
+                    bin,
+                    vec![i + 1, b.offset as usize],
+                    out,
+                    depth + 1,
+                    splitter,
+                );
+                deepest = deepest.max(d);
+            }
         }
     }
     deepest

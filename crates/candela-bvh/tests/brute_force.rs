@@ -165,6 +165,24 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
             }
             assert_padded_aligned(&padded, label);
             assert_padded_aligned(&padded8, label);
+            // Leaves of two blocks split into the free lanes: same nodes,
+            // every invariant, the same answers.
+            let filled = Bvh4::from_binary_filled(bvh.clone(), boxes, 4);
+            let filled8 = Bvh8::from_binary_filled(bvh.clone(), boxes, 4);
+            let mut filled8_padded = filled8.clone();
+            filled8_padded.pad_leaves(4);
+            for (name, v) in [
+                ("4-wide filled", filled.validate(boxes)),
+                ("8-wide filled", filled8.validate(boxes)),
+                ("8-wide filled padded", filled8_padded.validate(boxes)),
+            ] {
+                if let Err(e) = v {
+                    panic!("{label} {strategy:?}/{max_leaf} ({name}): {e}");
+                }
+            }
+            assert_eq!(filled.nodes().len(), wide.nodes().len());
+            assert_eq!(filled8.nodes().len(), wide8.nodes().len());
+            assert_padded_aligned(&filled8_padded, label);
             let world = bvh.bounds();
             for k in 0..rays {
                 let o = if world.is_empty() {
@@ -220,6 +238,9 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
                 assert!(s4.prims_tested.max(s8.prims_tested) as usize <= boxes.len());
                 query.check_padded(&padded, brute, &ctx);
                 query.check_padded(&padded8, brute, &format!("{ctx} 8-wide"));
+                query.check_wide(&filled, brute, &format!("{ctx} 4-wide filled"));
+                query.check_wide(&filled8, brute, &format!("{ctx} 8-wide filled"));
+                query.check_padded(&filled8_padded, brute, &format!("{ctx} 8-wide filled"));
             }
         }
     }

@@ -120,10 +120,11 @@ struct Wide<const W: usize> {
 }
 
 impl<const W: usize> Wide<W> {
-    /// Collapses `bvh` and packs the leaves; `refs` and `shape` give each
+    /// Collapses `bvh` (built over `boxes`), splitting leaves of two blocks
+    /// into free lanes, and packs the leaves; `refs` and `shape` give each
     /// input primitive.
-    fn new(bvh: Bvh, refs: &[PrimRef], shape: impl Fn(PrimRef) -> Shape) -> Self {
-        let mut bvh = WideBvh::<W>::from_binary(bvh);
+    fn new(bvh: Bvh, boxes: &[Aabb], refs: &[PrimRef], shape: impl Fn(PrimRef) -> Shape) -> Self {
+        let mut bvh = WideBvh::<W>::from_binary_filled(bvh, boxes, 4);
         bvh.pad_leaves(4);
         let slot_refs: Vec<PrimRef> = bvh
             .primitive_order()
@@ -180,7 +181,11 @@ impl<const W: usize> Wide<W> {
     ) -> bool {
         let tr4 = TriangleRay4::new(tri_ray);
         let prefetch = |first, count| self.leaves.prefetch(first, count);
-        let test = |first, count, t_max| self.leaves.any(first, count, ray, &tr4, t_max);
+        // Compiled into the traversal loop (see `WideBvh::any_hit_leaves`).
+        let test = {
+            #[inline(always)]
+            |first, count, t_max| self.leaves.any(first, count, ray, &tr4, t_max)
+        };
         self.bvh.any_hit_leaves(q, ray.t_max, stats, prefetch, test)
     }
 }
@@ -239,9 +244,13 @@ pub fn primitive_boxes(triangles: &[[Vec3; 3]], spheres: &[(Vec3, f32)]) -> Vec<
 /// [`Accel::default_options`] for [`Layout::Wide4`] it is the tree the
 /// render's 4-wide tree is collapsed from: what a viewer shows node by node.
 pub fn binary_tree(triangles: &[[Vec3; 3]], spheres: &[(Vec3, f32)], opts: BuildOptions) -> Bvh {
-    let boxes = primitive_boxes(triangles, spheres);
+    tree_over(&primitive_boxes(triangles, spheres), opts)
+}
+
+/// The binary hierarchy over primitive boxes (centroids: the box centres).
+fn tree_over(boxes: &[Aabb], opts: BuildOptions) -> Bvh {
     let centroids: Vec<Vec3> = boxes.par_iter().map(Aabb::center).collect();
-    Bvh::build(&boxes, &centroids, opts)
+    Bvh::build(boxes, &centroids, opts)
 }
 
 /// Triangles and spheres behind one BVH. Immutable and `Sync`: share it
@@ -298,7 +307,8 @@ impl Accel {
         layout: Layout,
     ) -> Self {
         let start = Instant::now();
-        let bvh = binary_tree(triangles, spheres, opts);
+        let boxes = primitive_boxes(triangles, spheres);
+        let bvh = tree_over(&boxes, opts);
         let n_tri = triangles.len() as u32;
         // Input (BVH) ids: triangles, then spheres.
         let refs: Vec<PrimRef> = (0..n_tri)
@@ -341,7 +351,7 @@ impl Accel {
                 )
             }
             Layout::Wide4 => {
-                let w = Wide::<4>::new(bvh, &refs, shape);
+                let w = Wide::<4>::new(bvh, &boxes, &refs, shape);
                 let (n, d, b, p) = (
                     w.bvh.nodes().len(),
                     w.bvh.depth(),
@@ -351,7 +361,7 @@ impl Accel {
                 (n, d, b, p, Tree::Wide4(w))
             }
             Layout::Wide8 => {
-                let w = Wide::<8>::new(bvh, &refs, shape);
+                let w = Wide::<8>::new(bvh, &boxes, &refs, shape);
                 let (n, d, b, p) = (
                     w.bvh.nodes().len(),
                     w.bvh.depth(),

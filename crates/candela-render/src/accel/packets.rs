@@ -141,12 +141,16 @@ impl LeafBlocks {
     #[inline(always)]
     pub fn any(&self, first: u32, count: u32, ray: &Ray, tr4: &TriangleRay4, t_max: f32) -> bool {
         let start = (first / 4) as usize;
-        self.blocks[start..start + count.div_ceil(4) as usize]
-            .iter()
-            .any(|b| {
-                (b.tri_lanes != 0 && occluded_triangle4(tr4, &b.tri, b.tri_lanes, t_max))
-                    || (b.sphere_lanes != 0 && any_sphere(b, ray, t_max))
-            })
+        // A loop, not `Iterator::any`, which the compiler kept out of line
+        // (a call per leaf, and SSE encoding outside the AVX2 traversal).
+        for b in &self.blocks[start..start + count.div_ceil(4) as usize] {
+            if (b.tri_lanes != 0 && occluded_triangle4(tr4, &b.tri, b.tri_lanes, t_max))
+                || (b.sphere_lanes != 0 && any_sphere(b, ray, t_max))
+            {
+                return true;
+            }
+        }
+        false
     }
 }
 
