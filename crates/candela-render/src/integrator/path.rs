@@ -3,7 +3,9 @@
 //! `PathIntegrator::Li`), next-event estimation at every non-specular vertex
 //! and Russian roulette on throughput.
 //!
-//! Roulette looks at `beta · η²-scale` rather than `beta` (pbrt-v4's
+//! Roulette ends paths whose throughput fell below
+//! [`ROULETTE_THRESHOLD`], with probability 1 − throughput / threshold.
+//! It looks at `beta · η²-scale` rather than `beta` (pbrt-v4's
 //! `etaScale`): refraction into glass scales radiance by `1/η²`, which
 //! leaving undoes, so the bare throughput of a path inside glass understates
 //! what it will carry out and roulette would end it needlessly often. The
@@ -30,6 +32,7 @@ use crate::geometry::{Frame, Ray};
 use crate::light::{LightContext, LightSelection, LightSelector};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::settings::ROULETTE_THRESHOLD;
 use crate::shading::{sample_scatter, shading_frame, NoScatter};
 use crate::shape::SurfaceHit;
 use glam::Vec3;
@@ -173,7 +176,7 @@ pub fn path_radiance<R: PathRecorder>(
         depth += 1;
         if let Some(from) = settings.roulette_from {
             if depth >= from {
-                let survive = (beta * eta_scale).max_element().min(1.0);
+                let survive = ((beta * eta_scale).max_element() / ROULETTE_THRESHOLD).min(1.0);
                 if survive <= 0.0 || sampler.next_1d() >= survive {
                     rec.roulette(survive, false, beta);
                     break PathEnd::Roulette;

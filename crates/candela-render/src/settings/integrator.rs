@@ -33,6 +33,17 @@ pub enum Estimator {
 /// Bounce count from which Russian roulette may end a path.
 pub const ROULETTE_FROM: u32 = 3;
 
+/// The path tracer's Russian roulette leaves a path alone while its
+/// throughput (largest channel, times the η² of its refractions) is at
+/// least this; below it, the path survives with probability throughput /
+/// threshold (the "threshold" form of roulette). Survival = throughput, as
+/// in pbrt-v4 and Mitsuba 3 (a threshold of 1), ends paths four times as
+/// eagerly: on the CS184 boxes at unlimited depth with the Sobol sampler
+/// that cost more noise than the shorter paths saved (relMSE at 64 spp
+/// 1.7x higher for 15% fewer rays; thresholds 1, 0.5, 0.25 and 0.125 were
+/// measured, see BENCHMARKS.md, "Russian roulette by threshold").
+pub const ROULETTE_THRESHOLD: f32 = 0.25;
+
 /// The integrator's settings, as every front end names them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
