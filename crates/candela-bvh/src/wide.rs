@@ -100,9 +100,10 @@ impl<const W: usize> WideBvh<W> {
     /// Collapses a binary BVH and fills the lanes left empty by splitting
     /// leaves of `block + 1 ..= 2 * block` primitives into two of at most
     /// `block` (by the SAH with free box tests, largest leaf first): for
-    /// callers that test leaves in SIMD blocks of `block`. `boxes` are the primitive boxes the tree was
-    /// built over; the primitive order is permuted within leaves. With too
-    /// few boxes (not the tree's input) nothing is split.
+    /// callers that test leaves in SIMD blocks of `block`. `boxes` are the
+    /// primitive boxes the tree was built over; the primitive order is
+    /// permuted within leaves. With too few boxes (not the tree's input)
+    /// nothing is split.
     pub fn from_binary_filled(bvh: Bvh, boxes: &[Aabb], block: u32) -> Self {
         let block = block.max(1);
         Self::collapse(bvh, Some((boxes, block)))

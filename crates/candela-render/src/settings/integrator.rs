@@ -110,8 +110,9 @@ pub struct IntegratorSettings {
     #[cfg_attr(feature = "cli", arg(long))]
     pub technique_layers: bool,
 
-    /// Russian roulette on the path throughput from the third bounce on
-    /// (unbiased; `--no-roulette` is `--roulette false`).
+    /// Russian roulette on the path throughput from the third bounce on;
+    /// the path tracer ends only paths whose throughput fell below
+    /// 0.25, `ROULETTE_THRESHOLD` (unbiased; `--no-roulette` is `--roulette false`).
     #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", action = clap::ArgAction::Set,
         value_parser = clap::builder::BoolishValueParser::new(),
         default_value_t = IntegratorSettings::default().roulette))]
