@@ -13,15 +13,18 @@ root=$PWD
 python3 -m pip install --quiet -r crates/candela-py/requirements-dev.txt
 
 # Open Image Denoise came with pyoidn (requirements-dev.txt): from here on a
-# denoising test that cannot load it fails instead of skipping. Its Rust
-# tests (built by `cargo test --workspace`) run again with the library.
-# The Rust tests are given the library's folder; pytest finds it by itself
-# (through the interpreter's pyoidn, as users' code does).
+# denoising test that cannot load it fails instead of skipping. `.ci/run`
+# sets the same before the README's test command, so there the Rust
+# denoising tests have run with the library already; run alone, this script
+# runs them here.
 export CANDELA_REQUIRE_OIDN=1
-oidn_lib="$(python3 -c 'import importlib.util as u, os; print(os.path.join(os.path.dirname(u.find_spec("pyoidn").origin), "oidn", "lib"))')"
-CANDELA_OIDN_LIB="$oidn_lib" cargo test -p candela-image --lib denoise
-CANDELA_OIDN_LIB="$oidn_lib" cargo test -p candela-render --test denoise
-CANDELA_OIDN_LIB="$oidn_lib" cargo test -p candela-cli --test denoise_cli
+if [ -z "${CANDELA_OIDN_LIB:-}" ]; then
+    CANDELA_OIDN_LIB="$(python3 -c 'import importlib.util as u, os; print(os.path.join(os.path.dirname(u.find_spec("pyoidn").origin), "oidn", "lib"))')"
+    export CANDELA_OIDN_LIB
+    cargo test -p candela-image --lib denoise
+    cargo test -p candela-render --test denoise
+    cargo test -p candela-cli --test denoise_cli
+fi
 
 cargo fmt --manifest-path crates/candela-py/Cargo.toml -p candela-py -- --check
 cargo clippy --manifest-path crates/candela-py/Cargo.toml --all-targets -- -D warnings
@@ -34,8 +37,8 @@ CARGO_PROFILE_RELEASE_LTO=off CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 \
 python3 -m pip install --quiet --force-reinstall --no-deps crates/candela-py/dist/candela-*.whl
 
 # The CLI, in the test profile that `cargo test --workspace` already built.
-cargo build --profile test -p candela-cli
-export CANDELA_BIN="$root/target/debug/candela"
+CANDELA_BIN="$(bash .ci/cli-binary.sh)"
+export CANDELA_BIN
 if [ -d "$root/../shared/scenes/cs184" ]; then
     export CANDELA_SCENES="$root/../shared/scenes/cs184"
 fi

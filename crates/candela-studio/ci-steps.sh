@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Browser tests of Candela Studio: Debian's chromium driven by Playwright for
 # Python (its own browser download is never used). Installs what is missing,
-# builds the release binary if it is not up to date (CI's smoke step builds
-# the same one), and runs pytest. Run from anywhere: bash crates/candela-studio/ci-steps.sh
+# builds the CLI's test-profile binary if it is not up to date (after the
+# README's test command it is), and runs pytest. Run from anywhere:
+# bash crates/candela-studio/ci-steps.sh
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -19,7 +20,6 @@ if ! "$venv/bin/python" -c "import playwright, pytest" 2>/dev/null; then
   "$venv/bin/pip" install -q playwright pytest
 fi
 
-# The test profile's binary, which `cargo test` has built (no LTO build).
-cargo build --profile test -p candela-cli
-CANDELA_BIN="$PWD/target/debug/candela" "$venv/bin/python" -m pytest -q -p no:cacheprovider \
+# The test profile's binary, which `cargo test --workspace` has built.
+CANDELA_BIN="$(bash .ci/cli-binary.sh)" "$venv/bin/python" -m pytest -q -p no:cacheprovider \
   crates/candela-studio/tests/browser
