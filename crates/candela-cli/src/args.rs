@@ -108,7 +108,7 @@ pub struct RenderArgs {
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     pub defines: Vec<(String, String)>,
 
-    /// No progress bar and no statistics on stderr.
+    /// No progress bar and no statistics on stderr (warnings and errors still show).
     #[arg(short = 'q', long)]
     pub quiet: bool,
 }

@@ -117,7 +117,7 @@ pub fn render_job(
     load_time: std::time::Duration,
     settings: &Settings,
 ) -> Result<Outcome> {
-    let scene = build(loaded, settings, job.quiet)?;
+    let scene = build(loaded, settings)?;
     let checkpoints = CheckpointWriter::start(settings, &loaded.scene, job.record())
         .map_err(|e| UsageError(e.to_string()))?;
     let mut render = settings.render_settings();
@@ -215,7 +215,8 @@ pub fn load(job: &Job) -> Result<Loaded> {
 }
 
 /// Loads `scene` (`None`: the demo) with `--strict` and `-D` defines, and
-/// prints its warnings and notes unless `quiet`.
+/// prints its warnings, and its notes unless `quiet`: `-q` silences progress
+/// and statistics, never a report that something asked for was left out.
 pub fn load_scene(
     scene: Option<&Path>,
     strict: bool,
@@ -233,11 +234,11 @@ pub fn load_scene(
         )?,
         None => candela_scene::demo_scene(),
     };
+    let source = loaded.scene.source.display();
+    for warning in &loaded.report.warnings {
+        eprintln!("candela: warning: {source}:{warning}");
+    }
     if !quiet {
-        let source = loaded.scene.source.display();
-        for warning in &loaded.report.warnings {
-            eprintln!("candela: warning: {source}:{warning}");
-        }
         for note in &loaded.report.notes {
             eprintln!("candela: note: {source}:{note}");
         }
@@ -245,8 +246,9 @@ pub fn load_scene(
     Ok(loaded)
 }
 
-/// Builds the render-ready scene on the render's threads.
-fn build(loaded: &Loaded, settings: &Settings, quiet: bool) -> Result<Scene> {
+/// Builds the render-ready scene on the render's threads, and prints its
+/// warnings (even with `-q`, as `load_scene`).
+fn build(loaded: &Loaded, settings: &Settings) -> Result<Scene> {
     let desc = &loaded.scene;
     settings
         .image
@@ -257,19 +259,17 @@ fn build(loaded: &Loaded, settings: &Settings, quiet: bool) -> Result<Scene> {
         .with_threads(|| Scene::build(desc, &opts))
         .map_err(UsageError::from)?
         .with_context(|| format!("cannot render {}", desc.source.display()))?;
-    if !quiet {
-        let source = desc.source.display();
-        for warning in &scene.warnings {
-            eprintln!("candela: warning: {source}: {warning}");
-        }
-        for what in &scene.unsupported {
-            eprintln!("candela: warning: {source}: not supported yet: {what}");
-        }
-        if settings.integrator.estimator != Estimator::Normals && scene.lights.is_empty() {
-            eprintln!(
-                "candela: warning: {source}: the scene has no lights; the image will be black (try --normals)"
-            );
-        }
+    let source = desc.source.display();
+    for warning in &scene.warnings {
+        eprintln!("candela: warning: {source}: {warning}");
+    }
+    for what in &scene.unsupported {
+        eprintln!("candela: warning: {source}: not supported yet: {what}");
+    }
+    if settings.integrator.estimator != Estimator::Normals && scene.lights.is_empty() {
+        eprintln!(
+            "candela: warning: {source}: the scene has no lights; the image will be black (try --normals)"
+        );
     }
     Ok(scene)
 }

@@ -41,7 +41,7 @@ pub struct ResumeArgs {
     #[arg(long, value_name = "ADDRESS")]
     pub dask: Option<String>,
 
-    /// No progress bar and no statistics on stderr.
+    /// No progress bar and no statistics on stderr (warnings and errors still show).
     #[arg(short = 'q', long)]
     pub quiet: bool,
 }

@@ -348,3 +348,23 @@ fn camera_n_picks_the_files_nth_camera_and_refuses_one_it_lacks() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn quiet_silences_progress_and_statistics_but_not_warnings() {
+    let dir = scratch("quiet-warns");
+    let scene = dir.join("lonely.obj");
+    std::fs::write(
+        &scene,
+        "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .expect("scene written");
+    let out = dir.join("lonely.png");
+    let run = candela(&["-q", "--normals", "-f", path(&out), path(&scene)]);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(0), "{stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("warning") && stderr.contains("missing.mtl"),
+        "{stderr}"
+    );
+}
