@@ -235,8 +235,7 @@ impl AreaLight {
     /// [`AreaLight::sample_point`] on a triangle or parallelogram without
     /// the error bound, which light sampling does not use (the shadow ray
     /// ends short of the lamp): the point, the emitting normal and the
-    /// radiance; `None` for a sphere. About a quarter of the instructions of
-    /// light sampling's fallback to sampling by area went to that bound.
+    /// radiance; `None` for a sphere. Same points as `sample_point`.
     fn sample_planar_point(&self, u: Vec2) -> Option<(Vec3, Vec3, Vec3)> {
         match &self.shape {
             AreaShape::Triangle { v, normal } => {
