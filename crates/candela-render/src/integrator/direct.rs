@@ -56,8 +56,9 @@ pub enum LightingMode {
 }
 
 /// Sampler dimensions one [`estimate_direct`] call draws in `scene`: two per
-/// hemisphere ray, three per light sample (the light, a point on it), none
-/// for delta lights. A caller that skips the estimate skips these, so that
+/// hemisphere ray, three per light sample (the light's choice, a point on
+/// it; the choice's own dimension is drawn only when the point's number
+/// cannot also make the choice), none for delta lights. A caller that skips the estimate skips these, so that
 /// the rest of the path keeps its random numbers.
 pub fn direct_dimensions(scene: &Scene, mode: LightingMode, light_samples: u32) -> u32 {
     match mode {
@@ -124,10 +125,14 @@ pub fn estimate_direct<R: PathRecorder>(
     let scale = 1.0 / light_samples as f32;
     let receiver = light_context(hit, bsdf);
     for _ in 0..light_samples {
-        let u_choose = sampler.next_1d();
+        // The choice's own number, drawn only when the point's cannot be
+        // reused for it (`LightSelector::choose_with_point`).
+        let choice_dimension = sampler.skip_one();
         let u = sampler.next_2d();
         // None: no light can reach this point (the tree's bounds say so).
-        let Some((index, pmf)) = selector.choose(&receiver, u_choose) else {
+        let Some((index, pmf, u)) =
+            selector.choose_with_point(&receiver, u, || sampler.draw_skipped(choice_dimension))
+        else {
             continue;
         };
         let light = lights.get(index);

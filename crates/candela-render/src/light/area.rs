@@ -115,8 +115,7 @@ impl AreaLight {
                 if let Some(sampling) = solid_angle::choose(shape, p, area) {
                     return self.sample_solid_angle(p, u, sampling);
                 }
-                let (point, l) = self.sample_point(u);
-                (point.p, point.n, l)
+                self.sample_planar_point(u)?
             }
         };
         let d = q - p;
@@ -140,6 +139,10 @@ impl AreaLight {
 
     /// [`AreaLight::sample_li`] for a planar lamp sampled by solid angle
     /// as `sampling` says: the point is where the direction meets the lamp.
+    /// Out of line, as is [`AreaLight::sample_sphere`]: most light samples
+    /// of a scene's planar lamps are by area, and inlined, these two made
+    /// every call set up their stack frame.
+    #[inline(never)]
     fn sample_solid_angle(
         &self,
         p: Vec3,
@@ -186,17 +189,10 @@ impl AreaLight {
     pub(super) fn sample_point(&self, u: Vec2) -> (SurfacePoint, Vec3) {
         match &self.shape {
             AreaShape::Triangle { v, normal } => {
-                let b = square_to_uniform_triangle(u);
-                let b2 = 1.0 - b.x - b.y;
-                let l = match &self.textured {
-                    // The corner weights of q, as `surface_hit` interpolates UVs.
-                    Some(t) => t.at(b.x * t.uvs[0] + b.y * t.uvs[1] + b2 * t.uvs[2]),
-                    None => self.radiance,
-                };
-                let p = b.x * v[0] + b.y * v[1] + b2 * v[2];
+                let (b, p, l) = self.triangle_point(v, u);
                 // Interpolation error, as `triangle.rs` bounds a hit's.
                 let p_error =
-                    gamma(7) * ((b.x * v[0]).abs() + (b.y * v[1]).abs() + (b2 * v[2]).abs());
+                    gamma(7) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
                 (
                     SurfacePoint {
                         p,
@@ -236,9 +232,40 @@ impl AreaLight {
         }
     }
 
+    /// [`AreaLight::sample_point`] on a triangle or parallelogram without
+    /// the error bound, which light sampling does not use (the shadow ray
+    /// ends short of the lamp): the point, the emitting normal and the
+    /// radiance; `None` for a sphere. Same points as `sample_point`.
+    fn sample_planar_point(&self, u: Vec2) -> Option<(Vec3, Vec3, Vec3)> {
+        match &self.shape {
+            AreaShape::Triangle { v, normal } => {
+                let (_, p, l) = self.triangle_point(v, u);
+                Some((p, *normal, l))
+            }
+            AreaShape::Rect { shape, normal } => Some((shape.sample(u), *normal, self.radiance)),
+            AreaShape::Sphere { .. } => None,
+        }
+    }
+
+    /// A point of triangle `v` (this light's) uniform by area: its corner
+    /// weights, the point, and the radiance it emits (textured: at its UV).
+    #[inline(always)]
+    fn triangle_point(&self, v: &[Vec3; 3], u: Vec2) -> ([f32; 3], Vec3, Vec3) {
+        let b = square_to_uniform_triangle(u);
+        let b2 = 1.0 - b.x - b.y;
+        let l = match &self.textured {
+            // The corner weights of q, as `surface_hit` interpolates UVs.
+            Some(t) => t.at(b.x * t.uvs[0] + b.y * t.uvs[1] + b2 * t.uvs[2]),
+            None => self.radiance,
+        };
+        let p = b.x * v[0] + b.y * v[1] + b2 * v[2];
+        ([b.x, b.y, b2], p, l)
+    }
+
     /// Spheres seen from outside are sampled uniformly in the cone they
     /// subtend (no wasted samples on the far side); from inside they are
     /// dark, since they emit outward.
+    #[inline(never)]
     fn sample_sphere(&self, p: Vec3, center: Vec3, radius: f32, u: Vec2) -> Option<LightSample> {
         let to_center = center - p;
         let dc2 = to_center.length_squared();

@@ -40,6 +40,8 @@ mod envmap;
 mod envmap_tests;
 mod infinite;
 mod select;
+#[cfg(test)]
+mod select_tests;
 mod set;
 mod sky;
 #[cfg(test)]
@@ -51,12 +53,15 @@ pub use delta::{DirectionalLight, PointLight, SpotLight};
 pub use emission::{LightEmission, SceneSphere};
 pub use envmap::{EnvironmentLight, EnvironmentMap, EnvironmentOptions};
 pub use infinite::AmbientLight;
-pub use select::{LightSelection, LightSelector, AUTO_TREE_ABOVE};
+pub use select::{LightSelection, LightSelector, AUTO_TREE_ABOVE, MIN_REUSED_SHARE};
 pub use set::LightSet;
 pub use sky::ProceduralSky;
 pub use tree::{LightBounds, LightContext, LightTree};
 
 use glam::{Vec2, Vec3};
+
+/// The largest `f32` below 1: a remapped random number must stay in [0, 1).
+pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// A sampled direction toward a light.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -6,7 +6,14 @@
 //! had.
 
 use super::tree::{LightContext, LightTree};
-use super::LightSet;
+use super::{LightSet, ONE_MINUS_EPSILON};
+use glam::Vec2;
+
+/// The smallest share of [0, 1) from which [`LightSelector::choose_with_point`]
+/// reuses the choosing number for the point: rescaled from a share of
+/// 2^-8, a number of 24 bits (the sampler's) keeps 16, finer than any
+/// lamp's texture or shape needs.
+pub const MIN_REUSED_SHARE: f32 = 1.0 / 256.0;
 
 /// Scenes with more sampled (non-delta) lights than this use the light
 /// tree under [`LightSelection::Auto`]; others choose by power. With a few
@@ -82,6 +89,49 @@ impl LightSelector<'_> {
             Strategy::Power => self.set.choose_by_power(u),
             Strategy::Tree(tree) => tree.choose(ctx, u),
         }
+    }
+
+    /// Chooses a non-delta light for a light sample at `ctx` together with
+    /// the two numbers for the point on it: (light index, probability,
+    /// the point's numbers).
+    ///
+    /// `u` is the sample's 2-D number. Choosing by power or uniformly, its
+    /// first coordinate makes the choice and is then reused, rescaled from
+    /// the chosen light's share of [0, 1) to all of it (pbrt-v4's
+    /// `SampleDiscrete` remapping): given the choice it is still uniform and
+    /// independent of the second coordinate, and the choice and the point
+    /// are stratified together. That saves a draw per light sample; the
+    /// sampler was the largest cost of a light sample outside its shadow
+    /// ray (BENCHMARKS.md). `u_choose` (the sample's own one-dimensional
+    /// number) is called only when reuse would leave too few bits: a share
+    /// under [`MIN_REUSED_SHARE`], or the light tree, whose walk rescales
+    /// at every level.
+    pub fn choose_with_point(
+        &self,
+        ctx: &LightContext,
+        u: Vec2,
+        u_choose: impl FnOnce() -> f32,
+    ) -> Option<(u32, f32, Vec2)> {
+        let (index, pmf, share) = match self.strategy {
+            Strategy::Tree(tree) => {
+                let (index, pmf) = tree.choose(ctx, u_choose())?;
+                return Some((index, pmf, u));
+            }
+            Strategy::Power => self.set.choose_by_power_within(u.x)?,
+            Strategy::Uniform => {
+                let (index, pmf) = self.set.choose_uniformly(u.x)?;
+                let n = self.set.sampled_count() as f32;
+                let k = (u.x * n).floor().min(n - 1.0);
+                (index, pmf, k / n..(k + 1.0) / n)
+            }
+        };
+        let width = share.end - share.start;
+        let x = if width >= MIN_REUSED_SHARE {
+            ((u.x - share.start) / width).clamp(0.0, ONE_MINUS_EPSILON)
+        } else {
+            u_choose()
+        };
+        Some((index, pmf, Vec2::new(x, u.y)))
     }
 
     /// Probability that [`LightSelector::choose`] at `ctx` picks light `i`

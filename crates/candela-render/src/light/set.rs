@@ -4,6 +4,7 @@ use super::tree::LightTree;
 use super::{Light, LightSample};
 use crate::shape::{PrimKind, PrimRef};
 use glam::{Vec2, Vec3};
+use std::ops::Range;
 use std::sync::OnceLock;
 
 const NONE: u32 = u32::MAX;
@@ -142,6 +143,13 @@ impl LightSet {
 
     /// Chooses a non-delta light by power: (light index, probability).
     pub(super) fn choose_by_power(&self, u: f32) -> Option<(u32, f32)> {
+        self.choose_by_power_within(u).map(|(i, pmf, _)| (i, pmf))
+    }
+
+    /// [`LightSet::choose_by_power`], with the interval of [0, 1) whose
+    /// values of `u` choose that light (its share of the running sum).
+    #[inline]
+    pub(super) fn choose_by_power_within(&self, u: f32) -> Option<(u32, f32, Range<f32>)> {
         if self.sampled.is_empty() {
             return None;
         }
@@ -150,7 +158,8 @@ impl LightSet {
             .partition_point(|&c| c <= u)
             .min(self.sampled.len() - 1);
         let i = self.sampled[k];
-        Some((i, self.pmf[i as usize]))
+        let start = if k == 0 { 0.0 } else { self.cdf[k - 1] };
+        Some((i, self.pmf[i as usize], start..self.cdf[k]))
     }
 
     /// Probability that [`LightSet::choose_by_power`] picks light `i`.

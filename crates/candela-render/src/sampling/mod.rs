@@ -18,4 +18,4 @@ pub(crate) mod chi2;
 #[cfg(test)]
 mod sampler_tests;
 
-pub use sampler::{Sampler, SamplerKind};
+pub use sampler::{Sampler, SamplerKind, SkippedDimension};

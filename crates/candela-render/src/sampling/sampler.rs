@@ -20,6 +20,11 @@ pub enum SamplerKind {
     Sobol,
 }
 
+/// A dimension passed over by [`Sampler::skip_one`], whose value can still
+/// be drawn during the same pixel sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SkippedDimension(u32);
+
 /// A deterministic source of sample values.
 ///
 /// Call [`Sampler::start_pixel_sample`] before each pixel sample, then draw
@@ -75,6 +80,26 @@ impl Sampler {
     /// The next value in [0, 1).
     pub fn next_1d(&mut self) -> f32 {
         let dim = self.take_dimensions(1);
+        self.value_1d(dim)
+    }
+
+    /// Passes over the next dimension, as [`Sampler::skip`] does, and
+    /// returns it, so that code which needs its value only sometimes (a
+    /// light's choice when the point's own number cannot make it, see
+    /// `light/select.rs`) draws it with [`Sampler::draw_skipped`] only then.
+    pub fn skip_one(&mut self) -> SkippedDimension {
+        SkippedDimension(self.take_dimensions(1))
+    }
+
+    /// The value [`Sampler::next_1d`] would have given in place of
+    /// `skipped` (a dimension of the current pixel sample).
+    pub fn draw_skipped(&self, skipped: SkippedDimension) -> f32 {
+        self.value_1d(skipped.0)
+    }
+
+    /// The one-dimensional value of dimension `dim` of the current pixel
+    /// sample.
+    fn value_1d(&self, dim: u32) -> f32 {
         match self.kind {
             SamplerKind::Independent => unit_f32(self.independent_bits(dim)),
             SamplerKind::Sobol => {

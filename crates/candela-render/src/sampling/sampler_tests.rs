@@ -39,6 +39,31 @@ fn values_are_a_pure_function_of_seed_pixel_index_dimension() {
     }
 }
 
+/// A dimension passed over with `skip_one` and drawn later gives what
+/// `next_1d` would have given there, and the draws after it are those of a
+/// stream that drew it.
+#[test]
+fn a_skipped_dimension_draws_the_value_next_1d_gives() {
+    for kind in KINDS {
+        let mut a = Sampler::new(kind, 3);
+        let mut b = Sampler::new(kind, 3);
+        for index in 0..16 {
+            a.start_pixel_sample(5, 8, index);
+            b.start_pixel_sample(5, 8, index);
+            let _ = (a.next_2d(), b.next_2d());
+            let skipped = a.skip_one();
+            let drawn = b.next_1d();
+            assert_eq!(a.next_2d(), b.next_2d(), "{kind:?}");
+            assert_eq!(
+                a.draw_skipped(skipped).to_bits(),
+                drawn.to_bits(),
+                "{kind:?}"
+            );
+            assert_eq!(a.dimension(), b.dimension());
+        }
+    }
+}
+
 #[test]
 fn different_seeds_pixels_and_indices_give_different_values() {
     for kind in KINDS {

@@ -5,9 +5,7 @@
 
 use super::wide::{WideNode, LEAF};
 use super::{LightContext, LightTree};
-
-/// The largest `f32` below 1: a remapped random number must stay in [0, 1).
-const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+use crate::light::ONE_MINUS_EPSILON;
 
 /// The importance of each child of `node` at `ctx` and their sum, or
 /// `None` when no child can reach the point.
