@@ -310,7 +310,18 @@ impl Bsdf {
     /// Samples `wi` given `wo`: `u1` selects a lobe (where there are
     /// several), `u2` the direction. `None` when the sample carries no
     /// energy (e.g. a direction below the surface), which ends the path.
+    /// Inlined for the diffuse case like [`Bsdf::f`].
+    #[inline]
     pub fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
+        match *self {
+            Bsdf::Diffuse { albedo } => diffuse::sample(albedo, wo, u2),
+            _ => self.sample_any(wo, u1, u2),
+        }
+    }
+
+    /// [`Bsdf::sample`] for any model, dispatched out of line.
+    #[inline(never)]
+    fn sample_any(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
         match *self {
             Bsdf::Diffuse { albedo } => diffuse::sample(albedo, wo, u2),
             Bsdf::Mirror { reflectance } => specular::sample_mirror(reflectance, wo),
