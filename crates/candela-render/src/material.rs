@@ -159,8 +159,13 @@ impl Material {
 
     /// The BSDF at a hit point, with every textured parameter read at the
     /// hit's `uv`.
+    #[inline]
     pub fn bsdf_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
-        self.bsdf.map(|b| self.textures.apply(b, hit.uv))
+        let bsdf = self.bsdf?;
+        if !self.textures.textures_bsdf() {
+            return Some(bsdf); // untextured: no call, no copy through `apply`
+        }
+        Some(self.textures.apply(bsdf, hit.uv))
     }
 
     /// The radiance emitted at texture coordinate `uv` (on the emitting

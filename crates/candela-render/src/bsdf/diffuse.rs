@@ -26,10 +26,14 @@ pub(super) fn sample(albedo: Vec3, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
     if wo.z < 0.0 {
         wi.z = -wi.z;
     }
-    let pdf = pdf(wo, wi);
+    // `pdf` and `f` with their one hemisphere test made once.
+    if !same_hemisphere(wo, wi) {
+        return None;
+    }
+    let pdf = wi.z.abs() * FRAC_1_PI;
     (pdf > 0.0).then(|| BsdfSample {
         wi,
-        f: f(albedo, wo, wi),
+        f: albedo * FRAC_1_PI,
         pdf,
         flags: FLAGS,
     })

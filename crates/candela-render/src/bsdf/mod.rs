@@ -256,7 +256,20 @@ impl Bsdf {
     }
 
     /// The BSDF value for the pair (cosine excluded); zero for delta lobes.
+    /// The diffuse case is inlined into the caller (next-event estimation
+    /// calls this once per light sample); the others go through
+    /// [`Bsdf::f_any`].
+    #[inline]
     pub fn f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        match *self {
+            Bsdf::Diffuse { albedo } => diffuse::f(albedo, wo, wi),
+            _ => self.f_any(wo, wi),
+        }
+    }
+
+    /// [`Bsdf::f`] for any model, dispatched out of line.
+    #[inline(never)]
+    fn f_any(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         match *self {
             Bsdf::Diffuse { albedo } => diffuse::f(albedo, wo, wi),
             Bsdf::Mirror { .. }
@@ -297,7 +310,18 @@ impl Bsdf {
     /// Samples `wi` given `wo`: `u1` selects a lobe (where there are
     /// several), `u2` the direction. `None` when the sample carries no
     /// energy (e.g. a direction below the surface), which ends the path.
+    /// Inlined for the diffuse case like [`Bsdf::f`].
+    #[inline]
     pub fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
+        match *self {
+            Bsdf::Diffuse { albedo } => diffuse::sample(albedo, wo, u2),
+            _ => self.sample_any(wo, u1, u2),
+        }
+    }
+
+    /// [`Bsdf::sample`] for any model, dispatched out of line.
+    #[inline(never)]
+    fn sample_any(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
         match *self {
             Bsdf::Diffuse { albedo } => diffuse::sample(albedo, wo, u2),
             Bsdf::Mirror { reflectance } => specular::sample_mirror(reflectance, wo),
@@ -328,8 +352,19 @@ impl Bsdf {
     }
 
     /// The density per unit solid angle with which `sample` returns `wi`
-    /// (zero for delta lobes), for multiple importance sampling.
+    /// (zero for delta lobes), for multiple importance sampling. Inlined for
+    /// the diffuse case like [`Bsdf::f`].
+    #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match *self {
+            Bsdf::Diffuse { .. } => diffuse::pdf(wo, wi),
+            _ => self.pdf_any(wo, wi),
+        }
+    }
+
+    /// [`Bsdf::pdf`] for any model, dispatched out of line.
+    #[inline(never)]
+    fn pdf_any(&self, wo: Vec3, wi: Vec3) -> f32 {
         match *self {
             Bsdf::Diffuse { .. } => diffuse::pdf(wo, wi),
             Bsdf::Mirror { .. }

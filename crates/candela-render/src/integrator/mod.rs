@@ -26,6 +26,7 @@ pub use layers::{layer_names, layered_pixel_sample};
 pub use path::PathSettings;
 pub use record::PathRecorder;
 
+use crate::bsdf::Bsdf;
 use crate::film::{SampleValue, Splat};
 use crate::geometry::Ray;
 use crate::material::Material;
@@ -79,11 +80,15 @@ impl Default for FirstHitAov {
 impl FirstHitAov {
     /// Records the AOVs of the first hit.
     pub fn record(&mut self, hit: &SurfaceHit, material: &Material) {
+        self.record_bsdf(hit, material.bsdf_at(hit).as_ref());
+    }
+
+    /// [`FirstHitAov::record`] with the hit's BSDF already read (`None`
+    /// for a pure emitter).
+    pub fn record_bsdf(&mut self, hit: &SurfaceHit, bsdf: Option<&Bsdf>) {
         self.normal = hit.ns_facing();
         self.depth = hit.t;
-        self.albedo = material
-            .bsdf_at(hit)
-            .map_or(Vec3::ZERO, |bsdf| bsdf.albedo());
+        self.albedo = bsdf.map_or(Vec3::ZERO, Bsdf::albedo);
     }
 }
 

@@ -108,9 +108,12 @@ pub fn path_radiance<R: PathRecorder>(
         };
         rec.vertex(scene, depth, &ray, &hit, beta);
         let material = scene.material(hit.material);
-        if depth == 0 {
-            aov.record(&hit, material);
-        }
+        // The first vertex's BSDF serves the AOVs and the path alike.
+        let first_bsdf = (depth == 0).then(|| {
+            let bsdf = material.bsdf_at(&hit);
+            aov.record_bsdf(&hit, bsdf.as_ref());
+            bsdf
+        });
         if settings.bounces.contains(&depth) && hit.front_face {
             if let Some(le) = material.emission_at(hit.uv) {
                 let mis_weight = emitter_weight(scene, &selector, &ray, &hit, prev, settings);
@@ -128,7 +131,7 @@ pub fn path_radiance<R: PathRecorder>(
         if depth >= max_depth {
             break PathEnd::MaxDepth;
         }
-        let Some(bsdf) = material.bsdf_at(&hit) else {
+        let Some(bsdf) = first_bsdf.unwrap_or_else(|| material.bsdf_at(&hit)) else {
             break PathEnd::Absorbed; // a pure emitter absorbs
         };
         let frame = shading_frame(scene, &hit, material);

@@ -276,7 +276,7 @@ impl TriangleData {
     /// orthogonalises it), w the sign of the interpolated handedness; `None`
     /// when any corner has no tangent.
     fn tangent_at(&self, ni: [u32; 3], b: [f32; 3]) -> Option<Vec4> {
-        if ni[0] == NONE {
+        if ni[0] == NONE || self.tangents.is_empty() {
             return None;
         }
         let mut sum = Vec4::ZERO;

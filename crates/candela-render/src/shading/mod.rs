@@ -30,12 +30,20 @@ use std::f32::consts::{PI, TAU};
 /// The frame a BSDF is evaluated in at `hit`: around the shading normal,
 /// perturbed by the material's normal map (and bent by the rule of
 /// [`normal_map`]) when it has one. Without a normal map this is exactly
-/// `Frame::from_normal(hit.ns)`.
+/// `Frame::from_normal(hit.ns)`, inlined into the caller.
+#[inline]
 pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Frame {
     let t = &material.textures;
     if t.normal.is_none() && t.bump.is_none() {
         return Frame::from_normal(hit.ns);
     }
+    perturbed_frame(scene, hit, material)
+}
+
+/// [`shading_frame`] of a material with a normal or bump map.
+#[inline(never)]
+fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Frame {
+    let t = &material.textures;
     let (dpdu, dpdv) = uv_derivatives(scene, hit);
     let mut n = hit.ns;
     if let Some(map) = &t.normal {
@@ -87,6 +95,7 @@ pub enum NoScatter {
 /// Samples the BSDF in `frame` for the world direction `wo` and returns the
 /// world direction with the sample, or why there is none (`ng` the
 /// geometric normal facing `wo`).
+#[inline]
 pub fn sample_scatter(
     bsdf: &Bsdf,
     frame: &Frame,

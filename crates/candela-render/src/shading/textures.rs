@@ -94,7 +94,8 @@ impl MaterialTextures {
     }
 
     /// Whether any slot that changes the BSDF is filled.
-    fn textures_bsdf(&self) -> bool {
+    #[inline]
+    pub(crate) fn textures_bsdf(&self) -> bool {
         self.color.is_some() || self.roughness.is_some() || self.metalness.is_some()
     }
 

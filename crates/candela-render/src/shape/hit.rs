@@ -48,7 +48,9 @@ impl SurfaceHit {
     }
 
     /// Origin for a ray leaving this point in direction `w`, offset past the
-    /// error bound so that it cannot re-hit this surface.
+    /// error bound so that it cannot re-hit this surface. Inlined, like
+    /// [`offset_ray_origin`], into the bounce and the shadow rays.
+    #[inline(always)]
     pub fn spawn_origin(&self, w: Vec3) -> Vec3 {
         offset_ray_origin(self.p, self.p_error, self.ng, w)
     }

@@ -30,6 +30,9 @@ pub struct SurfacePoint {
 
 /// Moves `p` along `n` (toward the side `w` points to) by just more than the
 /// error box's extent along `n`, rounding each coordinate away from `p`.
+/// Forced inline: once per bounce and per shadow-ray side, and the calls
+/// cost a quarter of its instructions (callgrind).
+#[inline(always)]
 pub fn offset_ray_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     let d = n.abs().dot(p_error);
     let mut offset = d * n;
