@@ -7,7 +7,7 @@
 
 use crate::args::RenderArgs;
 use crate::progress::RenderBar;
-use crate::report::{print_stats, ReportContext};
+use crate::report::{print_render_warnings, print_stats, ReportContext};
 use anyhow::{Context, Result};
 use candela_image::denoise::Oidn;
 use candela_render::checkpoint::CheckpointWriter;
@@ -181,12 +181,13 @@ pub fn render_job(
         written.push(path);
     }
     if let Some(w) = &writer {
-        if let (Some(e), false) = (w.take_failure(), job.quiet) {
+        if let Some(e) = w.take_failure() {
             eprintln!("candela: warning: {e}");
         }
         // After the image: a checkpoint that cannot be written costs no image.
         w.save(output.film.clone(), output.stats.render_time)?;
     }
+    print_render_warnings(&output);
     if !job.quiet {
         let cx = ReportContext {
             load_time,

@@ -76,10 +76,15 @@ pub fn print_stats(scene: &Scene, output: &RenderOutput, cx: &ReportContext) {
             eprintln!("candela: interrupted: the image is partial, {spread_text}")
         }
     }
-    if s.invalid_samples > 0 {
+}
+
+/// Prints what went wrong in a render without stopping it, even with `-q`
+/// (which silences statistics, not warnings).
+pub fn print_render_warnings(output: &RenderOutput) {
+    if output.stats.invalid_samples > 0 {
         eprintln!(
             "candela: warning: {} NaN or infinite samples were dropped",
-            s.invalid_samples
+            output.stats.invalid_samples
         );
     }
 }
