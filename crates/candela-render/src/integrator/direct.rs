@@ -58,8 +58,9 @@ pub enum LightingMode {
 /// Sampler dimensions one [`estimate_direct`] call draws in `scene`: two per
 /// hemisphere ray, three per light sample (the light's choice, a point on
 /// it; the choice's own dimension is drawn only when the point's number
-/// cannot also make the choice), none for delta lights. A caller that skips the estimate skips these, so that
-/// the rest of the path keeps its random numbers.
+/// cannot also make the choice), none for delta lights. A caller that skips
+/// the estimate skips these, so that the rest of the path keeps its random
+/// numbers.
 pub fn direct_dimensions(scene: &Scene, mode: LightingMode, light_samples: u32) -> u32 {
     match mode {
         LightingMode::Hemisphere => 2 * light_samples,

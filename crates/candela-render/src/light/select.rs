@@ -118,12 +118,7 @@ impl LightSelector<'_> {
                 return Some((index, pmf, u));
             }
             Strategy::Power => self.set.choose_by_power_within(u.x)?,
-            Strategy::Uniform => {
-                let (index, pmf) = self.set.choose_uniformly(u.x)?;
-                let n = self.set.sampled_count() as f32;
-                let k = (u.x * n).floor().min(n - 1.0);
-                (index, pmf, k / n..(k + 1.0) / n)
-            }
+            Strategy::Uniform => self.set.choose_uniformly_within(u.x)?,
         };
         let width = share.end - share.start;
         let x = if width >= MIN_REUSED_SHARE {

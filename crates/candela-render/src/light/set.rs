@@ -169,12 +169,24 @@ impl LightSet {
 
     /// Chooses a non-delta light, each equally likely.
     pub(super) fn choose_uniformly(&self, u: f32) -> Option<(u32, f32)> {
+        self.choose_uniformly_within(u).map(|(i, pmf, _)| (i, pmf))
+    }
+
+    /// [`LightSet::choose_uniformly`], with the interval of [0, 1) whose
+    /// values of `u` choose that light.
+    #[inline]
+    pub(super) fn choose_uniformly_within(&self, u: f32) -> Option<(u32, f32, Range<f32>)> {
         let n = self.sampled.len();
         if n == 0 {
             return None;
         }
         let k = ((u * n as f32) as usize).min(n - 1);
-        Some((self.sampled[k], 1.0 / n as f32))
+        let n_f = n as f32;
+        Some((
+            self.sampled[k],
+            1.0 / n_f,
+            k as f32 / n_f..(k + 1) as f32 / n_f,
+        ))
     }
 
     /// Probability that [`LightSet::choose_uniformly`] picks light `i`.
