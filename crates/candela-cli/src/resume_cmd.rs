@@ -2,7 +2,10 @@
 //! to its sample target (or time budget), and writes the outputs the
 //! original command asked for. The checkpoint carries the settings and the
 //! command's job ([`Job`]: scene, output, `--strict`, `-D`), so nothing else
-//! is needed; only how the work runs may be changed here. A distributed
+//! is needed; only how the work runs may be changed here, and the sample
+//! target raised (`-s`: a finished render continues to more samples per
+//! pixel and ends bit for bit where a render started with that target
+//! ends, since a pixel's samples depend only on their indices). A distributed
 //! render's checkpoint is handed to the distributed front
 //! (`python -m candela.distributed --resume`).
 
@@ -22,6 +25,11 @@ const FRONT: &str = "cli";
 pub struct ResumeArgs {
     /// The checkpoint file (written by `candela --checkpoint PATH ...`).
     pub checkpoint: PathBuf,
+
+    /// Samples per pixel to reach [default: the checkpoint's]: a higher
+    /// target continues a finished render; a lower one is refused.
+    #[arg(short = 's', long, value_name = "N")]
+    pub spp: Option<u32>,
 
     /// Render threads (0: all cores) [default: the checkpoint's].
     #[arg(short = 't', long, value_name = "N")]
@@ -95,12 +103,24 @@ pub fn run(args: &ResumeArgs) -> Result<Outcome> {
                 args.checkpoint.display()
             ))
         })?;
+        refuse_cli_only_flags(args)?;
         return crate::dask::resume(&args.checkpoint, address, args.quiet);
+    }
+    if args.dask.is_some() {
+        return Err(UsageError(format!(
+            "{}: --dask applies to a distributed render's checkpoint; this one was rendered by `candela`",
+            args.checkpoint.display()
+        ))
+        .into());
     }
     let mut job = Job::from_record(&checkpoint.front)
         .map_err(|e| UsageError(format!("{}: {e}", args.checkpoint.display())))?;
     job.quiet = args.quiet;
     let mut settings = checkpoint.settings;
+    if let Some(spp) = args.spp {
+        // A lower target is refused where every checkpoint is matched.
+        settings.sampling.spp = Some(spp);
+    }
     if let Some(t) = args.threads {
         settings.run.threads = t;
     }
@@ -115,4 +135,23 @@ pub fn run(args: &ResumeArgs) -> Result<Outcome> {
     let load_start = Instant::now();
     let loaded = load(&job)?;
     render_job(&job, &loaded, load_start.elapsed(), &settings)
+}
+
+/// A distributed render continues as its checkpoint says (the cluster runs
+/// it): the flags that change a CLI render's run are refused by name rather
+/// than dropped.
+fn refuse_cli_only_flags(args: &ResumeArgs) -> Result<(), UsageError> {
+    let given = [
+        ("-s", args.spp.is_some()),
+        ("-t", args.threads.is_some()),
+        ("--time", args.time.is_some()),
+        ("--checkpoint-every", args.checkpoint_every.is_some()),
+    ];
+    match given.iter().find(|(_, set)| *set) {
+        Some((flag, _)) => Err(UsageError(format!(
+            "{}: {flag} applies to a checkpoint rendered by `candela`, not to a distributed render's",
+            args.checkpoint.display()
+        ))),
+        None => Ok(()),
+    }
 }

@@ -96,6 +96,49 @@ fn a_render_killed_after_a_checkpoint_resumes_to_the_same_image_bit_for_bit() {
 }
 
 #[test]
+fn a_finished_render_resumed_to_more_samples_is_the_render_of_that_many() {
+    let dir = TempDir::new("ckpt-more");
+    let (reference, out, ck) = (dir.join("ref.exr"), dir.join("out.exr"), dir.join("ck"));
+    // Adaptive sampling too: a pixel that stopped stays stopped, one that
+    // used all 32 samples continues where it was.
+    let flags = [
+        "-r", "24", "18", "-t", "2", "-a", "16", "0.05", "--seed", "3", "-q",
+    ];
+    let whole = run(candela()
+        .args(flags)
+        .args(["-s", "128", "-f", path(&reference)]));
+    assert!(whole.status.success());
+    let first =
+        run(candela()
+            .args(flags)
+            .args(["-s", "32", "-f", path(&out), "--checkpoint", path(&ck)]));
+    assert!(first.status.success());
+    assert!(layers(&out) != layers(&reference), "32 and 128 spp differ");
+    let log = refused(&run(candela().args(["resume", path(&ck), "-s", "16"])));
+    assert!(log.contains("spp = 32 in the checkpoint, 16 here"), "{log}");
+    let log = refused(&run(candela().args([
+        "resume",
+        path(&ck),
+        "--dask",
+        "local:1",
+    ])));
+    assert!(
+        log.contains("--dask applies to a distributed render"),
+        "{log}"
+    );
+    let more = run(candela().args(["resume", path(&ck), "-s", "128", "-t", "1"]));
+    assert!(
+        more.status.success(),
+        "{}",
+        String::from_utf8_lossy(&more.stderr)
+    );
+    assert!(
+        layers(&out) == layers(&reference),
+        "the render resumed to 128 spp differs from one started with 128"
+    );
+}
+
+#[test]
 fn a_checkpoint_of_other_settings_or_another_scene_is_refused() {
     let dir = TempDir::new("ckpt-mismatch");
     let scene = dir.join("box.dae");

@@ -81,3 +81,20 @@ fn other_settings_or_scenes_are_named() {
     let err = c.check_matches(ContentHash([1, 3]), &same).unwrap_err();
     assert!(err.to_string().contains("another scene"), "{err}");
 }
+
+#[test]
+fn the_sample_target_may_be_raised_not_lowered() {
+    let c = checkpoint();
+    let target = c.settings.sampling.spp();
+    let mut more = c.settings.clone();
+    more.sampling.spp = Some(target * 4);
+    assert_eq!(c.check_matches(c.scene_hash, &more), Ok(()));
+    let mut fewer = c.settings.clone();
+    fewer.sampling.spp = Some(target - 1);
+    let err = c
+        .check_matches(c.scene_hash, &fewer)
+        .unwrap_err()
+        .to_string();
+    let expect = format!("spp = {target} in the checkpoint, {} here", target - 1);
+    assert!(err.contains(&expect) && err.contains("not fewer"), "{err}");
+}
