@@ -47,16 +47,66 @@ pub(crate) fn utf8(bytes: Vec<u8>, path: &Path, kind: ErrorKind) -> Result<Strin
 
 /// Line and column (1-based, columns in characters) of byte `byte` of `text`.
 pub(crate) fn loc_in(text: &str, byte: usize) -> SourceLoc {
+    let byte = char_start(text, byte);
+    let line_start = text[..byte].rfind('\n').map_or(0, |i| i + 1);
+    let line = text[..byte].bytes().filter(|&b| b == b'\n').count();
+    located(text, line, line_start, byte)
+}
+
+/// The start of the character holding byte `byte` (clamped to the text).
+fn char_start(text: &str, byte: usize) -> usize {
     let mut byte = byte.min(text.len());
     while !text.is_char_boundary(byte) {
         byte -= 1;
     }
-    let before = &text[..byte];
-    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-    let line = before.bytes().filter(|&b| b == b'\n').count() + 1;
-    let col = before[line_start..].chars().count() + 1;
+    byte
+}
+
+/// The location of `byte`, on the line (0-based `line`) starting at `line_start`.
+fn located(text: &str, line: usize, line_start: usize, byte: usize) -> SourceLoc {
+    let col = text[line_start..byte].chars().count() + 1;
     SourceLoc {
-        line: u32::try_from(line).unwrap_or(u32::MAX),
+        line: u32::try_from(line + 1).unwrap_or(u32::MAX),
         col: u32::try_from(col).unwrap_or(u32::MAX),
+    }
+}
+
+/// Where each line of a text starts, for readers that locate many elements
+/// (one per mesh, material, instance...): [`loc_in`] scans the text up to
+/// the byte, which over a multi-megabyte file costs milliseconds a call.
+/// Built on the first lookup, so a file read without a message pays nothing.
+#[derive(Default)]
+pub(crate) struct LineIndex {
+    starts: std::cell::OnceCell<Vec<usize>>,
+}
+
+impl LineIndex {
+    /// The same location as [`loc_in`], by a binary search over line starts.
+    pub(crate) fn loc(&self, text: &str, byte: usize) -> SourceLoc {
+        let starts = self.starts.get_or_init(|| {
+            let newlines = text.bytes().enumerate().filter(|&(_, b)| b == b'\n');
+            std::iter::once(0)
+                .chain(newlines.map(|(i, _)| i + 1))
+                .collect()
+        });
+        let byte = char_start(text, byte);
+        let line = starts.partition_point(|&start| start <= byte) - 1;
+        located(text, line, starts[line], byte)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_line_index_locates_as_the_scan_does() {
+        let text = "<a>\n  <b é=\"1\"/>\n\n\té<c/>\n";
+        let index = LineIndex::default();
+        for byte in 0..=text.len() + 3 {
+            assert_eq!(index.loc(text, byte), loc_in(text, byte), "byte {byte}");
+        }
+        let c = text.find("<c").unwrap();
+        assert_eq!(index.loc(text, c), SourceLoc { line: 4, col: 3 });
     }
 }

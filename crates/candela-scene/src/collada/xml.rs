@@ -4,6 +4,7 @@
 use crate::desc::SourceLoc;
 use crate::error::{ErrorKind, LoadError};
 use crate::report::Collector;
+use crate::text_file::LineIndex;
 use roxmltree::{Document, Node};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -20,6 +21,7 @@ pub(crate) struct Ctx<'a, 'i> {
     pub file: &'a Path,
     ids: HashMap<&'a str, XNode<'a, 'i>>,
     warnings: RefCell<Collector>,
+    lines: LineIndex,
 }
 
 impl<'a, 'i> Ctx<'a, 'i> {
@@ -36,6 +38,7 @@ impl<'a, 'i> Ctx<'a, 'i> {
             file,
             ids,
             warnings: RefCell::new(Collector::new(file.to_path_buf(), strict)),
+            lines: LineIndex::default(),
         }
     }
 
@@ -46,7 +49,7 @@ impl<'a, 'i> Ctx<'a, 'i> {
 
     /// Line and column of a byte offset in the source text.
     pub fn loc_at(&self, byte: usize) -> SourceLoc {
-        loc_in(self.text, byte)
+        self.lines.loc(self.text, byte)
     }
 
     /// Where an element starts.

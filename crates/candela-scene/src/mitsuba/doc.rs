@@ -4,7 +4,7 @@
 
 use crate::desc::SourceLoc;
 use crate::error::{ErrorKind, LoadError};
-use crate::text_file::loc_in;
+use crate::text_file::LineIndex;
 use roxmltree::Node;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -19,12 +19,14 @@ pub(super) struct Doc<'a> {
     pub text: &'a str,
     pub file: &'a Path,
     pub defines: &'a RefCell<HashMap<String, String>>,
+    /// Line starts of `text`, for [`Doc::loc`].
+    pub lines: LineIndex,
 }
 
 impl Doc<'_> {
     /// Where an element starts.
     pub fn loc(&self, node: XNode) -> SourceLoc {
-        loc_in(self.text, node.range().start)
+        self.lines.loc(self.text, node.range().start)
     }
 
     /// An error located at the start of `node`.

@@ -126,6 +126,7 @@ impl Builder {
             text: &text,
             file: path,
             defines,
+            lines: Default::default(),
         };
         let root = xml.root_element();
         if root.tag_name().name() != "scene" {
