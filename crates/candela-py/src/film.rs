@@ -161,9 +161,13 @@ impl PyFilm {
     }
 
     /// The raw sums as NumPy arrays: `radiance`, `radiance_sq`, `albedo`,
-    /// `normal` (H, W, 3) float64; `lum` and `lum_sq` (H, W) float64; `count`
-    /// (H, W) uint32. Divide by `count` for means (and, from the squares,
-    /// variances for statistical tests).
+    /// `normal` (H, W, 3) float64; `lum`, `lum_sq` and `depth` (H, W)
+    /// float64; `count` and `depth_count` (H, W) uint32; `nodes` and
+    /// `prim_tests` (H, W) uint64. Divide by `count` for means (and, from
+    /// the squares, variances for statistical tests); `depth` by
+    /// `depth_count`, the samples whose camera ray hit something (the EXR's
+    /// depth layer); `nodes` and `prim_tests` by `count` for the BVH work
+    /// per sample (the EXR's cost layers).
     fn arrays<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (w, h) = self.size();
         let (w, h) = (w as usize, h as usize);
@@ -177,12 +181,22 @@ impl PyFilm {
         d.set_item("radiance_sq", rgb(|p| p.radiance_sq)?)?;
         d.set_item("albedo", rgb(|p| p.albedo)?)?;
         d.set_item("normal", rgb(|p| p.normal)?)?;
-        let lum: Vec<f64> = px.iter().map(|p| p.lum).collect();
-        d.set_item("lum", PyArray1::from_vec(py, lum).reshape([h, w])?)?;
-        let sq: Vec<f64> = px.iter().map(|p| p.lum_sq).collect();
-        d.set_item("lum_sq", PyArray1::from_vec(py, sq).reshape([h, w])?)?;
-        let n: Vec<u32> = px.iter().map(|p| p.count).collect();
-        d.set_item("count", PyArray1::from_vec(py, n).reshape([h, w])?)?;
+        let f64s = |f: fn(&PixelSums) -> f64| {
+            PyArray1::from_vec(py, px.iter().map(f).collect()).reshape([h, w])
+        };
+        d.set_item("lum", f64s(|p| p.lum)?)?;
+        d.set_item("lum_sq", f64s(|p| p.lum_sq)?)?;
+        d.set_item("depth", f64s(|p| p.depth)?)?;
+        let u32s = |f: fn(&PixelSums) -> u32| {
+            PyArray1::from_vec(py, px.iter().map(f).collect()).reshape([h, w])
+        };
+        d.set_item("count", u32s(|p| p.count)?)?;
+        d.set_item("depth_count", u32s(|p| p.depth_count)?)?;
+        let u64s = |f: fn(&PixelSums) -> u64| {
+            PyArray1::from_vec(py, px.iter().map(f).collect()).reshape([h, w])
+        };
+        d.set_item("nodes", u64s(|p| p.nodes)?)?;
+        d.set_item("prim_tests", u64s(|p| p.prim_tests)?)?;
         Ok(d)
     }
 

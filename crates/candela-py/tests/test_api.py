@@ -58,6 +58,21 @@ def test_image_is_the_mean_of_the_sums(full):
     np.testing.assert_array_equal(full.image(), mean)
 
 
+def test_depth_and_cost_sums_agree_with_the_counts_and_statistics(full):
+    a, s = full.arrays(), full.stats
+    assert a["depth_count"].dtype == np.uint32 and a["nodes"].dtype == np.uint64
+    assert (a["depth_count"] <= a["count"]).all()
+    hit = a["depth_count"] > 0
+    assert hit.mean() > 0.5  # the box fills most of the frame
+    assert (a["depth"][~hit] == 0).all()
+    mean_depth = a["depth"][hit] / a["depth_count"][hit]
+    assert np.isfinite(mean_depth).all() and (mean_depth > 0).all()
+    # The film's per-pixel BVH work adds up to the render's totals.
+    assert a["nodes"].sum() == pytest.approx(s["nodes_per_ray"] * s["rays"], rel=1e-9)
+    assert a["prim_tests"].sum() == pytest.approx(s["tests_per_ray"] * s["rays"], rel=1e-9)
+    assert a["nodes"].sum() > 0 and a["prim_tests"].sum() > 0
+
+
 def test_a_cell_is_the_same_pixels_of_the_full_render(scene, full):
     cell = scene.render(cell=(13, 5, 18, 17), **SMALL)
     assert (cell.origin, cell.width, cell.height, cell.full_size) == ((13, 5), 18, 17, (40, 30))

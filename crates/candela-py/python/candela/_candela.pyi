@@ -44,7 +44,11 @@ class FilmArrays(TypedDict):
     normal: npt.NDArray[np.float64]
     lum: npt.NDArray[np.float64]
     lum_sq: npt.NDArray[np.float64]
+    depth: npt.NDArray[np.float64]
     count: npt.NDArray[np.uint32]
+    depth_count: npt.NDArray[np.uint32]
+    nodes: npt.NDArray[np.uint64]
+    prim_tests: npt.NDArray[np.uint64]
 
 class Film:
     """Per-pixel sums over a rectangle of an image; merges by addition."""
@@ -78,7 +82,8 @@ class Film:
     def sample_counts(self) -> npt.NDArray[np.uint32]:
         """Samples per pixel, shape (H, W)."""
     def arrays(self) -> FilmArrays:
-        """The raw sums as NumPy arrays."""
+        """The raw sums as NumPy arrays (``depth`` over ``depth_count``,
+        the rest over ``count``, give the means)."""
     def save(self, path: _Path, *, samples: bool = False, aovs: bool = False, **settings: Any) -> None:
         """Writes .png (tone-mapped sRGB with the ``exposure`` and ``tone``
         settings) or .exr (linear; optional samples, albedo and normal
