@@ -415,6 +415,15 @@ impl Accel {
         self.n_tri
     }
 
+    /// Turns the AVX2 traversal of an 8-wide tree on or off (on only where
+    /// the CPU has it), so tests can compare it with the portable path.
+    #[cfg(test)]
+    fn set_avx2(&mut self, on: bool) {
+        if let Tree::Wide8(w) = &mut self.tree {
+            w.bvh.set_avx2(on);
+        }
+    }
+
     /// Closest hit with `t` in `(0, ray.t_max)`.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         self.intersect_counted(ray, &mut ())
