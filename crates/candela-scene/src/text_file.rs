@@ -109,4 +109,15 @@ mod tests {
         let c = text.find("<c").unwrap();
         assert_eq!(index.loc(text, c), SourceLoc { line: 4, col: 3 });
     }
+
+    #[test]
+    fn places_are_line_and_character_column() {
+        let text = "ab\nçd\n\nxyz";
+        assert_eq!(loc_in(text, 0), SourceLoc { line: 1, col: 1 });
+        assert_eq!(loc_in(text, 3), SourceLoc { line: 2, col: 1 });
+        // 'ç' is two bytes, one character.
+        assert_eq!(loc_in(text, 5), SourceLoc { line: 2, col: 2 });
+        assert_eq!(loc_in(text, 8), SourceLoc { line: 4, col: 1 });
+        assert_eq!(loc_in(text, 100), SourceLoc { line: 4, col: 4 });
+    }
 }

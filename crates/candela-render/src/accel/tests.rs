@@ -201,10 +201,15 @@ fn avx2_path_matches_portable_path() {
         let (mut s_avx2, mut s_portable) = (TraversalStats::default(), TraversalStats::default());
         let got = avx2.intersect_counted(&ray, &mut s_avx2);
         let want = portable.intersect_counted(&ray, &mut s_portable);
-        let bits = |h: Option<Hit>| h.map(|h| (h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()));
+        let bits =
+            |h: Option<Hit>| h.map(|h| (h.t.to_bits(), h.prim, h.b1.to_bits(), h.b2.to_bits()));
         assert_eq!(bits(got), bits(want), "ray {k}: {ray:?}");
         assert_eq!(s_avx2, s_portable, "ray {k}: statistics");
-        assert_eq!(avx2.occluded(&ray), portable.occluded(&ray), "ray {k}: occluded");
+        assert_eq!(
+            avx2.occluded(&ray),
+            portable.occluded(&ray),
+            "ray {k}: occluded"
+        );
         hits += usize::from(got.is_some());
         from_surface += usize::from(k % 4 == 0 && got.is_some_and(|h| h.t < 1e-3));
     }

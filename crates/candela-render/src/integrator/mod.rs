@@ -107,7 +107,14 @@ pub fn pixel_sample<R: PathRecorder>(
 ) -> SampleValue {
     sampler.start_pixel_sample(x, y, index);
     let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
-    let lens = sampler.next_2d();
+    // The lens sample's dimensions are taken either way, so later draws
+    // keep theirs; a pinhole skips drawing it.
+    let lens = if scene.camera.uses_lens_sample() {
+        sampler.next_2d()
+    } else {
+        sampler.skip(2);
+        Vec2::ZERO
+    };
     let ray = scene.camera.generate_ray(film, lens);
     ctx.rays.camera += 1;
     rec.camera(film, &ray);

@@ -23,7 +23,7 @@
 //! add up to it sample for sample.
 
 use super::direct::{
-    bsdf_hit_weight, direct_dimensions, estimate_direct, light_context, LightingMode,
+    bsdf_hit_weight, direct_dimensions, estimate_direct, light_context, LightingMode, SpawnOrigins,
 };
 use super::record::{EmissionEvent, PathEnd, PathRecorder, ScatterEvent};
 use super::{FirstHitAov, ThreadContext};
@@ -135,10 +135,22 @@ pub fn path_radiance<R: PathRecorder>(
             break PathEnd::Absorbed; // a pure emitter absorbs
         };
         let frame = shading_frame(scene, &hit, material);
+        // Offset origins of the shadow rays, which the bounce reuses.
+        let mut origins = SpawnOrigins::default();
         if !bsdf.flags().is_specular() {
             let term = beta
                 * direct_at_vertex(
-                    scene, &hit, &frame, &bsdf, depth, settings, &selector, sampler, ctx, rec,
+                    scene,
+                    &hit,
+                    &frame,
+                    &bsdf,
+                    depth,
+                    settings,
+                    &selector,
+                    sampler,
+                    &mut origins,
+                    ctx,
+                    rec,
                 );
             l += term;
             rec.radiance_term(depth + 1, term);
@@ -174,7 +186,7 @@ pub fn path_radiance<R: PathRecorder>(
             bsdf_pdf: s.pdf,
             specular: s.flags.is_specular(),
         });
-        ray = Ray::new(hit.spawn_origin(wi), wi);
+        ray = Ray::new(origins.origin_toward(&hit, wi), wi);
         ctx.rays.bounce += 1;
         depth += 1;
         if let Some(from) = settings.roulette_from {
@@ -210,6 +222,7 @@ fn direct_at_vertex<R: PathRecorder>(
     settings: &PathSettings,
     selector: &LightSelector,
     sampler: &mut Sampler,
+    origins: &mut SpawnOrigins,
     ctx: &mut ThreadContext,
     rec: &mut R,
 ) -> Vec3 {
@@ -228,6 +241,7 @@ fn direct_at_vertex<R: PathRecorder>(
         settings.light_samples,
         selector,
         sampler,
+        origins,
         ctx,
         rec,
     );
