@@ -55,17 +55,20 @@ pub enum LightingMode {
     Mis,
 }
 
+/// Sampler dimensions of one light sample: the light's choice and a point
+/// on it (the choice's own dimension is drawn only when the point's number
+/// cannot also make the choice).
+const LIGHT_SAMPLE_DIMENSIONS: u32 = 3;
+
 /// Sampler dimensions one [`estimate_direct`] call draws in `scene`: two per
-/// hemisphere ray, three per light sample (the light's choice, a point on
-/// it; the choice's own dimension is drawn only when the point's number
-/// cannot also make the choice), none for delta lights. A caller that skips
-/// the estimate skips these, so that the rest of the path keeps its random
-/// numbers.
+/// hemisphere ray, [`LIGHT_SAMPLE_DIMENSIONS`] per light sample, none for
+/// delta lights. A caller that skips the estimate skips these, so that the
+/// rest of the path keeps its random numbers.
 pub fn direct_dimensions(scene: &Scene, mode: LightingMode, light_samples: u32) -> u32 {
     match mode {
         LightingMode::Hemisphere => 2 * light_samples,
         LightingMode::Light | LightingMode::Mis if scene.lights.has_sampled_lights() => {
-            3 * light_samples
+            LIGHT_SAMPLE_DIMENSIONS * light_samples
         }
         LightingMode::Light | LightingMode::Mis => 0,
     }
@@ -124,6 +127,12 @@ pub fn estimate_direct<R: PathRecorder>(
     if !lights.has_sampled_lights() || light_samples == 0 {
         return total;
     }
+    if lights.behind_every_lamp(hit.p) {
+        // Every light sample would land on a lamp's back and be rejected
+        // (the ceiling above a Cornell box's lamp): pass over their numbers.
+        sampler.skip(LIGHT_SAMPLE_DIMENSIONS * light_samples);
+        return total;
+    }
     let mut sum = Vec3::ZERO;
     let scale = 1.0 / light_samples as f32;
     let receiver = light_context(hit, bsdf);
@@ -138,9 +147,8 @@ pub fn estimate_direct<R: PathRecorder>(
         else {
             continue;
         };
-        let light = lights.get(index);
-        let mis =
-            (mode == LightingMode::Mis && light.is_hittable()).then_some(light_samples as f32);
+        let mis = (mode == LightingMode::Mis && lights.is_hittable(index))
+            .then_some(light_samples as f32);
         if let Some(sample) = lights.sample_li(index, hit.p, u) {
             let mut s = sample;
             s.pdf *= pmf;

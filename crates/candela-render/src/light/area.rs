@@ -15,6 +15,7 @@
 //! unbiased).
 
 mod solid_angle;
+pub(super) use solid_angle::LampSize;
 #[cfg(test)]
 pub(super) use solid_angle::MAX_SOLID_ANGLE;
 
@@ -101,18 +102,24 @@ impl AreaShape {
 
 impl AreaLight {
     pub(super) fn sample_li(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
-        self.sample_li_with_area(p, u, self.shape.area())
+        self.sample_li_with_size(p, u, &LampSize::of(&self.shape))
     }
 
-    /// [`AreaLight::sample_li`] given `area = self.shape.area()`, which a
-    /// caller sampling the light many times computes once.
-    pub(super) fn sample_li_with_area(&self, p: Vec3, u: Vec2, area: f32) -> Option<LightSample> {
+    /// [`AreaLight::sample_li`] given `size = LampSize::of(&self.shape)`,
+    /// which a caller sampling the light many times computes once.
+    pub(super) fn sample_li_with_size(
+        &self,
+        p: Vec3,
+        u: Vec2,
+        size: &LampSize,
+    ) -> Option<LightSample> {
+        let area = size.area;
         let (q, normal, l) = match &self.shape {
             AreaShape::Sphere { center, radius } => {
                 return self.sample_sphere(p, *center, *radius, u)
             }
             shape => {
-                if let Some(sampling) = solid_angle::choose(shape, p, area) {
+                if let Some(sampling) = solid_angle::choose(shape, p, size) {
                     return self.sample_solid_angle(p, u, sampling);
                 }
                 self.sample_planar_point(u)?
@@ -299,11 +306,17 @@ impl AreaLight {
     }
 
     pub(super) fn pdf_li(&self, p: Vec3, wi: Vec3, p_light: Vec3) -> f32 {
-        self.pdf_li_with_area(p, wi, p_light, self.shape.area())
+        self.pdf_li_with_size(p, wi, p_light, &LampSize::of(&self.shape))
     }
 
-    /// [`AreaLight::pdf_li`] given `area = self.shape.area()`.
-    pub(super) fn pdf_li_with_area(&self, p: Vec3, wi: Vec3, p_light: Vec3, area: f32) -> f32 {
+    /// [`AreaLight::pdf_li`] given `size = LampSize::of(&self.shape)`.
+    pub(super) fn pdf_li_with_size(
+        &self,
+        p: Vec3,
+        wi: Vec3,
+        p_light: Vec3,
+        size: &LampSize,
+    ) -> f32 {
         let normal = match &self.shape {
             AreaShape::Triangle { normal, .. } | AreaShape::Rect { normal, .. } => *normal,
             AreaShape::Sphere { center, radius } => {
@@ -321,10 +334,10 @@ impl AreaLight {
         if cos_light <= 0.0 {
             return 0.0;
         }
-        if let Some(sampling) = solid_angle::choose(&self.shape, p, area) {
+        if let Some(sampling) = solid_angle::choose(&self.shape, p, size) {
             return 1.0 / sampling.solid_angle();
         }
-        (p_light - p).length_squared() / (cos_light * area)
+        (p_light - p).length_squared() / (cos_light * size.area)
     }
 
     pub(super) fn power(&self) -> f32 {

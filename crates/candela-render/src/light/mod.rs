@@ -31,6 +31,7 @@
 //! sees, so the path tracer handles all of them in one place.
 
 mod area;
+mod backs;
 mod delta;
 mod emission;
 #[cfg(test)]
@@ -48,6 +49,7 @@ mod sky;
 mod tests;
 mod tree;
 
+use area::LampSize;
 pub use area::{AreaLight, AreaShape, TexturedEmission};
 pub use delta::{DirectionalLight, PointLight, SpotLight};
 pub use emission::{LightEmission, SceneSphere};

@@ -1,7 +1,8 @@
 //! All the lights of a scene, and how one is chosen for a light sample.
 
+use super::backs::LampBacks;
 use super::tree::LightTree;
-use super::{Light, LightSample};
+use super::{LampSize, Light, LightSample};
 use crate::shape::{PrimKind, PrimRef};
 use glam::{Vec2, Vec3};
 use std::ops::Range;
@@ -27,13 +28,18 @@ pub struct LightSet {
     /// Per primitive kind, the light index of each emissive primitive
     /// (by index within its kind), `NONE` for the others.
     prim_light: [Vec<u32>; PrimKind::COUNT],
-    /// Surface area per light (0 for lights without one), computed once
-    /// instead of per light sample.
-    area: Vec<f32>,
+    /// Surface area and centre per area light (zero for the others),
+    /// computed once instead of per light sample.
+    sizes: Vec<LampSize>,
+    /// Whether rays can hit each light ([`Light::is_hittable`]), read
+    /// once per light sample.
+    hittable: Vec<bool>,
     /// Running sum of every light's probability of being chosen to emit
     /// (delta lights included), and that probability per light.
     emit_cdf: Vec<f32>,
     emit_pmf: Vec<f32>,
+    /// The planes of the sampled lights when all are planar lamps.
+    backs: LampBacks,
     /// The light tree, built when a selector first asks for it.
     tree: OnceLock<LightTree>,
 }
@@ -81,15 +87,19 @@ impl LightSet {
             cdf.push(running);
         }
         let (emit_pmf, emit_cdf) = emission_pmf(&lights, scene_radius);
-        let area = lights
+        let sizes = lights
             .iter()
             .map(|l| match l {
-                Light::Area(a) => a.shape.area(),
-                _ => 0.0,
+                Light::Area(a) => LampSize::of(&a.shape),
+                _ => LampSize::default(),
             })
             .collect();
+        let hittable = lights.iter().map(Light::is_hittable).collect();
+        let backs = LampBacks::new(&lights, &sampled);
         Self {
-            area,
+            sizes,
+            hittable,
+            backs,
             lights,
             delta,
             infinite,
@@ -126,6 +136,14 @@ impl LightSet {
     /// Whether any non-delta light can be chosen by [`LightSet::choose`].
     pub fn has_sampled_lights(&self) -> bool {
         !self.sampled.is_empty()
+    }
+
+    /// Whether `p` is behind every non-delta light (all planar lamps, which
+    /// emit on one side), so that every light sample from it would be
+    /// rejected (`backs.rs`); false when that is not certain.
+    #[inline]
+    pub fn behind_every_lamp(&self, p: Vec3) -> bool {
+        self.backs.all_behind(p)
     }
 
     /// The number of non-delta lights (those a light sample chooses among).
@@ -235,18 +253,24 @@ impl LightSet {
         &self.lights[i as usize]
     }
 
-    /// `get(i).sample_li(p, u)`, with the area of an area light precomputed.
+    /// `get(i).is_hittable()`, precomputed.
+    #[inline]
+    pub fn is_hittable(&self, i: u32) -> bool {
+        self.hittable[i as usize]
+    }
+
+    /// `get(i).sample_li(p, u)`, with the size of an area light precomputed.
     pub fn sample_li(&self, i: u32, p: Vec3, u: Vec2) -> Option<LightSample> {
         match &self.lights[i as usize] {
-            Light::Area(a) => a.sample_li_with_area(p, u, self.area[i as usize]),
+            Light::Area(a) => a.sample_li_with_size(p, u, &self.sizes[i as usize]),
             light => light.sample_li(p, u),
         }
     }
 
-    /// `get(i).pdf_li(p, wi, p_light)`, with the area of an area light precomputed.
+    /// `get(i).pdf_li(p, wi, p_light)`, with the size of an area light precomputed.
     pub fn pdf_li(&self, i: u32, p: Vec3, wi: Vec3, p_light: Vec3) -> f32 {
         match &self.lights[i as usize] {
-            Light::Area(a) => a.pdf_li_with_area(p, wi, p_light, self.area[i as usize]),
+            Light::Area(a) => a.pdf_li_with_size(p, wi, p_light, &self.sizes[i as usize]),
             light => light.pdf_li(p, wi, p_light),
         }
     }

@@ -84,25 +84,48 @@ fn is_rectangle(shape: &Parallelogram) -> bool {
     e0.dot(e1).abs() <= RECTANGLE_COSINE * e0.length() * e1.length()
 }
 
-/// How to sample the planar `shape` of surface `area` seen from `p` by
+/// What the gate needs of a lamp besides its shape: its surface area and
+/// its centre, computed once per light (the set keeps one per light) rather
+/// than per light sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct LampSize {
+    /// Surface area.
+    pub(crate) area: f32,
+    /// The centre of a planar lamp (unused for spheres).
+    centre: Vec3,
+}
+
+impl LampSize {
+    /// The size of `shape`.
+    pub(crate) fn of(shape: &AreaShape) -> Self {
+        let centre = match shape {
+            AreaShape::Triangle { v, .. } => (v[0] + v[1] + v[2]) * (1.0 / 3.0),
+            AreaShape::Rect { shape, .. } => shape.origin + 0.5 * (shape.edge0 + shape.edge1),
+            AreaShape::Sphere { center, .. } => *center,
+        };
+        Self {
+            area: shape.area(),
+            centre,
+        }
+    }
+}
+
+/// How to sample the planar `shape` of size `size` seen from `p` by
 /// solid angle, or `None`
 /// to sample it by area (spheres; a viewpoint behind or in the lamp's plane,
 /// which sees nothing; a lamp far enough for [`SOLID_ANGLE_GATE`]; solid
 /// angles outside the bounds above).
 #[inline(always)]
-pub(super) fn choose(shape: &AreaShape, p: Vec3, area: f32) -> Option<SolidAngleSampling> {
+pub(super) fn choose(shape: &AreaShape, p: Vec3, size: &LampSize) -> Option<SolidAngleSampling> {
     // The gate first: most shading points are far from the lamp, and this
-    // test is a handful of multiplications (the lamp's area is precomputed).
-    let (corner, normal, centre) = match shape {
-        AreaShape::Triangle { v, normal } => (v[0], *normal, (v[0] + v[1] + v[2]) * (1.0 / 3.0)),
-        AreaShape::Rect { shape, normal } => (
-            shape.origin,
-            *normal,
-            shape.origin + 0.5 * (shape.edge0 + shape.edge1),
-        ),
+    // test is a handful of multiplications (the lamp's area and centre are
+    // precomputed).
+    let (corner, normal) = match shape {
+        AreaShape::Triangle { v, normal } => (v[0], *normal),
+        AreaShape::Rect { shape, normal } => (shape.origin, *normal),
         AreaShape::Sphere { .. } => return None,
     };
-    if area < SOLID_ANGLE_GATE * (centre - p).length_squared() {
+    if size.area < SOLID_ANGLE_GATE * (size.centre - p).length_squared() {
         return None;
     }
     choose_near(shape, p, corner, normal)
