@@ -84,7 +84,8 @@ pub fn light_context(hit: &SurfaceHit, bsdf: &Bsdf) -> LightContext {
 }
 
 /// Direct radiance reflected toward `hit.wo`. Light sampling: `light_samples`
-/// samples of the non-delta lights (chosen by `selector`) plus one sample of each
+/// samples of the non-delta lights (chosen by `selector` for `receiver`,
+/// the vertex's [`light_context`]) plus one sample of each
 /// delta light, each weighted for MIS when `mode` is [`LightingMode::Mis`].
 /// Hemisphere mode: `light_samples` uniform hemisphere rays (CS184's `-H`
 /// with `-l`). Each sample goes to `rec`. The shadow rays' origins are kept
@@ -95,6 +96,7 @@ pub fn estimate_direct<R: PathRecorder>(
     hit: &SurfaceHit,
     frame: &Frame,
     bsdf: &Bsdf,
+    receiver: &LightContext,
     mode: LightingMode,
     light_samples: u32,
     selector: &LightSelector,
@@ -135,7 +137,6 @@ pub fn estimate_direct<R: PathRecorder>(
     }
     let mut sum = Vec3::ZERO;
     let scale = 1.0 / light_samples as f32;
-    let receiver = light_context(hit, bsdf);
     for _ in 0..light_samples {
         // The choice's own number, drawn only when the point's cannot be
         // reused for it (`LightSelector::choose_with_point`).
@@ -143,7 +144,7 @@ pub fn estimate_direct<R: PathRecorder>(
         let u = sampler.next_2d();
         // None: no light can reach this point (the tree's bounds say so).
         let Some((index, pmf, u)) =
-            selector.choose_with_point(&receiver, u, || sampler.draw_skipped(choice_dimension))
+            selector.choose_with_point(receiver, u, || sampler.draw_skipped(choice_dimension))
         else {
             continue;
         };

@@ -135,6 +135,9 @@ pub fn path_radiance<R: PathRecorder>(
             break PathEnd::Absorbed; // a pure emitter absorbs
         };
         let frame = shading_frame(scene, &hit, material);
+        // Where lights are chosen for at this vertex: its light samples,
+        // and the MIS weight of an emitter its bounce finds.
+        let receiver = light_context(&hit, &bsdf);
         // Offset origins of the shadow rays, which the bounce reuses.
         let mut origins = SpawnOrigins::default();
         if !bsdf.flags().is_specular() {
@@ -144,6 +147,7 @@ pub fn path_radiance<R: PathRecorder>(
                     &hit,
                     &frame,
                     &bsdf,
+                    &receiver,
                     depth,
                     settings,
                     &selector,
@@ -182,7 +186,7 @@ pub fn path_radiance<R: PathRecorder>(
             eta_scale *= bsdf.refraction_eta2(frame.to_local(hit.wo));
         }
         prev = Some(PrevVertex {
-            receiver: light_context(&hit, &bsdf),
+            receiver,
             bsdf_pdf: s.pdf,
             specular: s.flags.is_specular(),
         });
@@ -218,6 +222,7 @@ fn direct_at_vertex<R: PathRecorder>(
     hit: &SurfaceHit,
     frame: &Frame,
     bsdf: &Bsdf,
+    receiver: &LightContext,
     depth: u32,
     settings: &PathSettings,
     selector: &LightSelector,
@@ -237,6 +242,7 @@ fn direct_at_vertex<R: PathRecorder>(
         hit,
         frame,
         bsdf,
+        receiver,
         settings.lighting,
         settings.light_samples,
         selector,

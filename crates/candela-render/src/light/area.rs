@@ -106,7 +106,11 @@ impl AreaLight {
     }
 
     /// [`AreaLight::sample_li`] given `size = LampSize::of(&self.shape)`,
-    /// which a caller sampling the light many times computes once.
+    /// which a caller sampling the light many times computes once. Inlined
+    /// into the light sample (its solid-angle and sphere paths stay out of
+    /// line): the call, its stack frame and the sample returned through
+    /// memory were about 25 of its 120 instructions.
+    #[inline(always)]
     pub(super) fn sample_li_with_size(
         &self,
         p: Vec3,

@@ -2,7 +2,7 @@
 //!
 //! Planar emitters (triangles, CGL parallelograms) emit on one side only, so
 //! a light sample from a point behind a lamp's plane ends on its back and is
-//! rejected (`AreaLight::sample_li_with_area` returns `None` when the lamp's
+//! rejected (`AreaLight::sample_li_with_size` returns `None` when the lamp's
 //! cosine is not positive). In a scene whose sampled lights are all planar, a
 //! point behind every one of them (the ceiling above a Cornell box's lamp:
 //! 15% of the CS184 benchmark's light samples) gets nothing from any light
