@@ -89,12 +89,14 @@ pub fn light_context(hit: &SurfaceHit, bsdf: &Bsdf) -> LightContext {
 /// delta light, each weighted for MIS when `mode` is [`LightingMode::Mis`].
 /// Hemisphere mode: `light_samples` uniform hemisphere rays (CS184's `-H`
 /// with `-l`). Each sample goes to `rec`. The shadow rays' origins are kept
-/// in `origins`, for the vertex's bounce.
+/// in `origins`, for the vertex's bounce. `wo` is `hit.wo` in `frame`
+/// (the vertex's BSDF sample needs it too).
 #[allow(clippy::too_many_arguments)]
 pub fn estimate_direct<R: PathRecorder>(
     scene: &Scene,
     hit: &SurfaceHit,
     frame: &Frame,
+    wo: Vec3,
     bsdf: &Bsdf,
     receiver: &LightContext,
     mode: LightingMode,
@@ -106,10 +108,19 @@ pub fn estimate_direct<R: PathRecorder>(
     rec: &mut R,
 ) -> Vec3 {
     if mode == LightingMode::Hemisphere {
-        return estimate_hemisphere(scene, hit, frame, bsdf, light_samples, sampler, ctx, rec);
+        return estimate_hemisphere(
+            scene,
+            hit,
+            frame,
+            wo,
+            bsdf,
+            light_samples,
+            sampler,
+            ctx,
+            rec,
+        );
     }
     let lights = &scene.lights;
-    let wo = frame.to_local(hit.wo);
     let mut vertex = Vertex {
         scene,
         hit,
@@ -171,6 +182,7 @@ fn estimate_hemisphere<R: PathRecorder>(
     scene: &Scene,
     hit: &SurfaceHit,
     frame: &Frame,
+    wo: Vec3,
     bsdf: &Bsdf,
     samples: u32,
     sampler: &mut Sampler,
@@ -180,7 +192,6 @@ fn estimate_hemisphere<R: PathRecorder>(
     if samples == 0 {
         return Vec3::ZERO;
     }
-    let wo = frame.to_local(hit.wo);
     let scale = 1.0 / samples as f32;
     let whole_sphere = bsdf.flags().is_transmission();
     let mut sum = Vec3::ZERO;

@@ -135,6 +135,7 @@ pub fn path_radiance<R: PathRecorder>(
             break PathEnd::Absorbed; // a pure emitter absorbs
         };
         let frame = shading_frame(scene, &hit, material);
+        let wo = frame.to_local(hit.wo);
         // Where lights are chosen for at this vertex: its light samples,
         // and the MIS weight of an emitter its bounce finds.
         let receiver = light_context(&hit, &bsdf);
@@ -146,6 +147,7 @@ pub fn path_radiance<R: PathRecorder>(
                     scene,
                     &hit,
                     &frame,
+                    wo,
                     &bsdf,
                     &receiver,
                     depth,
@@ -170,7 +172,7 @@ pub fn path_radiance<R: PathRecorder>(
             0.0
         };
         let u2 = sampler.next_2d();
-        let (wi, s) = match sample_scatter(&bsdf, &frame, hit.ng, hit.wo, u1, u2) {
+        let (wi, s) = match sample_scatter(&bsdf, &frame, hit.ng, wo, u1, u2) {
             Ok(scattered) => scattered,
             Err(NoScatter::NoSample) => break PathEnd::NoScatter,
             Err(NoScatter::WrongSide) => break PathEnd::WrongSide,
@@ -183,7 +185,7 @@ pub fn path_radiance<R: PathRecorder>(
             beta,
         });
         if transmits {
-            eta_scale *= bsdf.refraction_eta2(frame.to_local(hit.wo));
+            eta_scale *= bsdf.refraction_eta2(wo);
         }
         prev = Some(PrevVertex {
             receiver,
@@ -221,6 +223,7 @@ fn direct_at_vertex<R: PathRecorder>(
     scene: &Scene,
     hit: &SurfaceHit,
     frame: &Frame,
+    wo: Vec3,
     bsdf: &Bsdf,
     receiver: &LightContext,
     depth: u32,
@@ -241,6 +244,7 @@ fn direct_at_vertex<R: PathRecorder>(
         scene,
         hit,
         frame,
+        wo,
         bsdf,
         receiver,
         settings.lighting,

@@ -56,7 +56,7 @@ fn no_sampled_direction_leaks_through_the_geometric_surface() {
         assert!(frame.to_local(wo).z > 0.0, "the bent frame sees the viewer");
         for bsdf in models() {
             let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
-            let Ok((wi, s)) = sample_scatter(&bsdf, &frame, ng, wo, u1, u2) else {
+            let Ok((wi, s)) = sample_scatter(&bsdf, &frame, ng, frame.to_local(wo), u1, u2) else {
                 rejected += 1;
                 continue;
             };

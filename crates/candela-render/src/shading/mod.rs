@@ -92,19 +92,19 @@ pub enum NoScatter {
     WrongSide,
 }
 
-/// Samples the BSDF in `frame` for the world direction `wo` and returns the
-/// world direction with the sample, or why there is none (`ng` the
-/// geometric normal facing `wo`).
+/// Samples the BSDF in `frame` for `wo_local` (the direction toward the
+/// viewer in `frame`'s coordinates, which the caller has for its light
+/// samples too) and returns the world direction with the sample, or why
+/// there is none (`ng` the geometric normal facing the viewer).
 #[inline]
 pub fn sample_scatter(
     bsdf: &Bsdf,
     frame: &Frame,
     ng: Vec3,
-    wo: Vec3,
+    wo_local: Vec3,
     u1: f32,
     u2: Vec2,
 ) -> Result<(Vec3, BsdfSample), NoScatter> {
-    let wo_local = frame.to_local(wo);
     let s = bsdf
         .sample(wo_local, u1, u2)
         .filter(|s| s.pdf > 0.0)
