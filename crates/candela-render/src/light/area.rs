@@ -106,11 +106,11 @@ impl AreaLight {
     }
 
     /// [`AreaLight::sample_li`] given `size = LampSize::of(&self.shape)`,
-    /// which a caller sampling the light many times computes once. Inlined
-    /// into the light sample (its solid-angle and sphere paths stay out of
-    /// line): the call, its stack frame and the sample returned through
-    /// memory were about 25 of its 120 instructions.
-    #[inline(always)]
+    /// which a caller sampling the light many times computes once. Left to
+    /// the compiler's inlining: forced inline, it kept `LightSet::sample_li`
+    /// and the point's sampling out of line instead, and callgrind counted
+    /// 2% more instructions per render (BENCHMARKS.md, "Light samples
+    /// outside their shadow rays").
     pub(super) fn sample_li_with_size(
         &self,
         p: Vec3,
