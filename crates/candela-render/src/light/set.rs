@@ -23,6 +23,10 @@ pub struct LightSet {
     /// Non-delta lights and the running sum of their selection probability.
     sampled: Vec<u32>,
     cdf: Vec<f32>,
+    /// Per entry of `sampled`, what a choice by power returns, read as one
+    /// record (a light sample's choice read three arrays, each with its
+    /// bounds check).
+    power_choices: Vec<PowerChoice>,
     /// Selection probability per light (0 for delta lights).
     pmf: Vec<f32>,
     /// Per primitive kind, the light index of each emissive primitive
@@ -86,6 +90,16 @@ impl LightSet {
             running += w / total;
             cdf.push(running);
         }
+        let power_choices = sampled
+            .iter()
+            .enumerate()
+            .map(|(k, &light)| PowerChoice {
+                light,
+                pmf: pmf[light as usize],
+                start: if k == 0 { 0.0 } else { cdf[k - 1] },
+                end: cdf[k],
+            })
+            .collect();
         let (emit_pmf, emit_cdf) = emission_pmf(&lights, scene_radius);
         let sizes = lights
             .iter()
@@ -105,6 +119,7 @@ impl LightSet {
             infinite,
             sampled,
             cdf,
+            power_choices,
             pmf,
             prim_light: by_kind,
             emit_cdf,
@@ -168,16 +183,10 @@ impl LightSet {
     /// values of `u` choose that light (its share of the running sum).
     #[inline]
     pub(super) fn choose_by_power_within(&self, u: f32) -> Option<(u32, f32, Range<f32>)> {
-        if self.sampled.is_empty() {
-            return None;
-        }
-        let k = self
-            .cdf
-            .partition_point(|&c| c <= u)
-            .min(self.sampled.len() - 1);
-        let i = self.sampled[k];
-        let start = if k == 0 { 0.0 } else { self.cdf[k - 1] };
-        Some((i, self.pmf[i as usize], start..self.cdf[k]))
+        let last = self.power_choices.len().checked_sub(1)?;
+        let k = self.cdf.partition_point(|&c| c <= u).min(last);
+        let choice = &self.power_choices[k];
+        Some((choice.light, choice.pmf, choice.start..choice.end))
     }
 
     /// Probability that [`LightSet::choose_by_power`] picks light `i`.
@@ -274,6 +283,16 @@ impl LightSet {
             light => light.pdf_li(p, wi, p_light),
         }
     }
+}
+
+/// One light of a choice by power: its index, probability and share of
+/// [0, 1) (from the running sum before it to its own).
+#[derive(Clone, Copy, Debug)]
+struct PowerChoice {
+    light: u32,
+    pmf: f32,
+    start: f32,
+    end: f32,
 }
 
 /// Every light's probability of being chosen to emit, in proportion to
