@@ -18,7 +18,7 @@ use crate::sampling::warp::{
 };
 use crate::sampling::Sampler;
 use crate::scene::Scene;
-use crate::shading::scatter_allowed;
+use crate::shading::{scatter_allowed, scatter_allowed_given};
 use crate::shape::SurfaceHit;
 use glam::{Vec2, Vec3};
 
@@ -264,10 +264,12 @@ impl SpawnOrigins {
     }
 
     /// The origin for a ray from `hit` toward `w` and its distance from
-    /// `hit.p`, computed and kept if this side has none yet.
+    /// `hit.p`, computed and kept if this side has none yet; `below` is
+    /// `w.dot(hit.ng) < 0.0` (the caller has the dot product).
     #[inline(always)]
-    fn toward(&mut self, hit: &SurfaceHit, w: Vec3) -> (Vec3, f32) {
-        *self.0[Self::side(hit, w)].get_or_insert_with(|| {
+    fn toward(&mut self, hit: &SurfaceHit, w: Vec3, below: bool) -> (Vec3, f32) {
+        debug_assert_eq!(usize::from(below), Self::side(hit, w));
+        *self.0[usize::from(below)].get_or_insert_with(|| {
             let origin = hit.spawn_origin(w);
             (origin, (origin - hit.p).length())
         })
@@ -346,7 +348,8 @@ impl Vertex<'_> {
         // The geometric surface decides reflection vs transmission (no leaks
         // through walls whose shading normals bend: `shading/normal_map.rs`).
         let wi = self.frame.to_local(s.wi);
-        if !scatter_allowed(hit.ng, s.wi, self.wo, wi) {
+        let wi_dot_ng = s.wi.dot(hit.ng);
+        if !scatter_allowed_given(wi_dot_ng, self.wo, wi) {
             return Vec3::ZERO;
         }
         let f = bsdf.f(self.wo, wi);
@@ -354,7 +357,7 @@ impl Vertex<'_> {
         if f == Vec3::ZERO {
             return Vec3::ZERO;
         }
-        let visible = self.unoccluded(s.wi, s.distance, ctx);
+        let visible = self.unoccluded(s.wi, wi_dot_ng < 0.0, s.distance, ctx);
         event.visible = Some(visible);
         if !visible {
             return Vec3::ZERO;
@@ -371,10 +374,17 @@ impl Vertex<'_> {
         f * s.l * wi.z.abs() * (weight / s.pdf)
     }
 
-    /// Whether the segment from the vertex toward `wi` is free up to
-    /// `distance` (short of the light's surface by [`SHADOW_EPSILON`]).
-    fn unoccluded(&mut self, wi: Vec3, distance: f32, ctx: &mut ThreadContext) -> bool {
-        let (origin, offset) = self.origins.toward(self.hit, wi);
+    /// Whether the segment from the vertex toward `wi` (`below` the
+    /// geometric surface or not) is free up to `distance` (short of the
+    /// light's surface by [`SHADOW_EPSILON`]).
+    fn unoccluded(
+        &mut self,
+        wi: Vec3,
+        below: bool,
+        distance: f32,
+        ctx: &mut ThreadContext,
+    ) -> bool {
+        let (origin, offset) = self.origins.toward(self.hit, wi, below);
         let t_max = if distance.is_finite() {
             (distance - offset) * (1.0 - SHADOW_EPSILON)
         } else {

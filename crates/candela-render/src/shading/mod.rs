@@ -78,7 +78,14 @@ fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Fram
 /// side in the shading frame (`wo_local`, `wi_local`): reflection stays on
 /// the viewer's side of the true surface, transmission crosses it.
 pub fn scatter_allowed(ng: Vec3, wi: Vec3, wo_local: Vec3, wi_local: Vec3) -> bool {
-    let geometric_reflection = wi.dot(ng) > 0.0;
+    scatter_allowed_given(wi.dot(ng), wo_local, wi_local)
+}
+
+/// [`scatter_allowed`] given `wi · ng`, for a caller that needs the dot
+/// product again (a light sample's shadow ray takes its side from it).
+#[inline(always)]
+pub fn scatter_allowed_given(wi_dot_ng: f32, wo_local: Vec3, wi_local: Vec3) -> bool {
+    let geometric_reflection = wi_dot_ng > 0.0;
     let shading_reflection = wo_local.z * wi_local.z > 0.0;
     geometric_reflection == shading_reflection
 }
