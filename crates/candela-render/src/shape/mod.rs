@@ -19,6 +19,8 @@ pub use triangle::{intersect_triangle, triangle_surface_point, TriangleHit, Tria
 pub use triangle4::{intersect_triangle4, occluded_triangle4, TrianglePacket, TriangleRay4};
 
 #[cfg(test)]
+mod fan_watertight_tests;
+#[cfg(test)]
 mod near_hit_tests;
 #[cfg(test)]
 mod tests;
