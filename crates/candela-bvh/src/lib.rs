@@ -19,6 +19,7 @@ pub mod simd;
 mod traverse;
 mod validate;
 mod wide;
+mod wide_collapse;
 mod wide_fill;
 mod wide_traverse;
 mod wide_validate;
@@ -45,6 +46,19 @@ pub enum BuildStrategy {
     None,
 }
 
+/// How a binary tree is collapsed into a wide one ([`WideBvh::from_binary`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Collapse {
+    /// Repeatedly open the child of largest area until the node is full;
+    /// binary leaves stay leaves.
+    Greedy,
+    /// The collapse of least SAH cost, by dynamic programming over the
+    /// binary nodes (Ylitie et al. 2017); it may also merge small subtrees
+    /// into one leaf. See `wide_collapse.rs`.
+    #[default]
+    Sah,
+}
+
 /// Build parameters. The costs are relative; only their ratio matters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BuildOptions {
@@ -61,6 +75,11 @@ pub struct BuildOptions {
     /// packets), so the SAH charges a leaf `ceil(n / block)` tests and
     /// prefers leaf sizes that fill whole blocks.
     pub leaf_block: usize,
+    /// How a wide tree is collapsed from this binary one.
+    pub collapse: Collapse,
+    /// For [`Collapse::Sah`]: the cost of one wide node's box test,
+    /// relative to one leaf block test (`intersection_cost` per block).
+    pub wide_node_cost: f32,
 }
 
 impl Default for BuildOptions {
@@ -71,6 +90,8 @@ impl Default for BuildOptions {
             traversal_cost: 1.0,
             intersection_cost: 1.0,
             leaf_block: 1,
+            collapse: Collapse::Sah,
+            wide_node_cost: 1.0,
         }
     }
 }
@@ -91,6 +112,8 @@ pub struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
     depth: u32,
+    /// The options it was built with (the wide collapse reads its own).
+    options: BuildOptions,
 }
 
 impl Bvh {
@@ -105,7 +128,13 @@ impl Bvh {
             nodes,
             order,
             depth,
+            options: opts,
         }
+    }
+
+    /// The options the tree was built with.
+    pub fn options(&self) -> &BuildOptions {
+        &self.options
     }
 
     /// `primitive_order()[slot]` is the caller's index of the primitive in

@@ -30,6 +30,20 @@ pub(crate) enum Lane {
     },
 }
 
+impl Lane {
+    /// Binary node `i` as a lane: a leaf lane for a leaf, else a node.
+    pub(crate) fn of(bin: &[crate::node::Node], i: usize) -> Self {
+        match bin[i] {
+            b if b.is_leaf() => Lane::Leaf {
+                bounds: b.bounds(),
+                first: b.offset,
+                count: b.count,
+            },
+            _ => Lane::Node(i),
+        }
+    }
+}
+
 /// Splits leaves, given the primitive boxes (by caller's id) and the
 /// primitive order, whose leaf ranges it permutes in place.
 pub(crate) struct LeafSplitter<'a> {
