@@ -73,12 +73,20 @@ pub struct BuildOptions {
     pub intersection_cost: f32,
     /// Primitives are tested in blocks of this many (e.g. 4 with SIMD
     /// packets), so the SAH charges a leaf `ceil(n / block)` tests and
-    /// prefers leaf sizes that fill whole blocks.
+    /// prefers leaf sizes that fill whole blocks. With [`Collapse::Sah`]
+    /// it is the wide collapse that charges blocks (it chooses the leaves
+    /// again, merging subtrees); the binary build then charges each
+    /// primitive, so that the collapse has small leaves to choose from.
     pub leaf_block: usize,
+    /// Bins per axis of the binned SAH (8, 16, 32 or 64; others round up).
+    pub sah_bins: usize,
     /// How a wide tree is collapsed from this binary one.
     pub collapse: Collapse,
-    /// For [`Collapse::Sah`]: the cost of one wide node's box test,
-    /// relative to one leaf block test (`intersection_cost` per block).
+    /// For [`Collapse::Sah`]: the cost of one wide node's box test, in the
+    /// units of `intersection_cost` (the cost of one leaf block's test).
+    /// By instruction counts a node test costs about 0.4 block tests
+    /// (BENCHMARKS.md, "Filled 8-wide nodes"); 0.25–0.5 give the same trees
+    /// to within a few per cent of the work per ray.
     pub wide_node_cost: f32,
 }
 
@@ -90,8 +98,9 @@ impl Default for BuildOptions {
             traversal_cost: 1.0,
             intersection_cost: 1.0,
             leaf_block: 1,
+            sah_bins: 16,
             collapse: Collapse::Sah,
-            wide_node_cost: 1.0,
+            wide_node_cost: 0.5,
         }
     }
 }

@@ -4,12 +4,16 @@
 //! Each node holds the boxes of up to `W` children in structure-of-arrays
 //! form, so one set of `W`-lane operations tests all of them (as in
 //! Embree's BVH4/BVH8 and Wald et al., "Getting Rid of Packets", 2008).
-//! Collapsing repeatedly opens the child with the largest surface area, the
-//! one the SAH deems most likely to be visited, until `W` children are
-//! reached (the greedy collapse of Wald et al. and of pbrt-v4's wide BVH
-//! discussions); a leaf is never opened. Leaves and the primitive order are
-//! the binary tree's, unless [`WideBvh::from_binary_filled`] then splits
-//! leaves of two SIMD blocks into the lanes still free (`wide_fill.rs`).
+//! By default the collapse is the one of least SAH cost, found by dynamic
+//! programming over the binary nodes (Ylitie et al. 2017,
+//! `wide_collapse.rs`), which may also merge small subtrees into one leaf.
+//! [`crate::Collapse::Greedy`] instead repeatedly opens the child with the
+//! largest surface area, the one the SAH deems most likely to be visited,
+//! until `W` children are reached (the greedy collapse of Wald et al. and of
+//! pbrt-v4's wide BVH discussions); a leaf is never opened. Either way the
+//! primitive order is the binary tree's, unless
+//! [`WideBvh::from_binary_filled`] then splits leaves of two SIMD blocks
+//! into the lanes still free (`wide_fill.rs`).
 //! [`Bvh4`] is traversed with SSE (baseline on x86_64), [`Bvh8`] with AVX2
 //! where the CPU has it and two SSE halves otherwise.
 
@@ -93,7 +97,8 @@ pub type Bvh4 = WideBvh<4>;
 pub type Bvh8 = WideBvh<8>;
 
 impl<const W: usize> WideBvh<W> {
-    /// Collapses a binary BVH, taking over its primitive order.
+    /// Collapses a binary BVH as its build options say
+    /// ([`crate::BuildOptions::collapse`]), taking over its primitive order.
     pub fn from_binary(bvh: Bvh) -> Self {
         Self::collapse(bvh, None)
     }
@@ -134,7 +139,9 @@ impl<const W: usize> WideBvh<W> {
                     CollapseCosts {
                         node: options.wide_node_cost,
                         block: options.intersection_cost,
-                        block_size: options.leaf_block.max(1) as u32,
+                        // Blocks as the leaves are tested: the fill's, else the build's.
+                        block_size: fill.map_or(options.leaf_block, |(_, b)| b as usize).max(1)
+                            as u32,
                         max_leaf: options.max_leaf_size.max(1) as u32,
                     },
                 )),

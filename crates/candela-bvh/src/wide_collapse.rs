@@ -52,6 +52,10 @@ pub(crate) struct SahCollapse<const W: usize> {
     range: Vec<(u32, u32)>,
     /// `D(n, W)`'s split for an opened `n`: lanes for the left child.
     node_split: Vec<u8>,
+    /// The cost of the whole tree, the root opened (in area units, not
+    /// divided by the root's area).
+    #[cfg_attr(not(test), allow(dead_code))]
+    pub(crate) total: f32,
 }
 
 impl<const W: usize> SahCollapse<W> {
@@ -64,6 +68,7 @@ impl<const W: usize> SahCollapse<W> {
         let mut opened = vec![false; n];
         let mut range = vec![(0u32, 0u32); n];
         let mut node_split = vec![0u8; n];
+        let mut total = 0.0;
         let block = costs.block_size.max(1);
         for i in (0..n).rev() {
             let b = &bin[i];
@@ -72,6 +77,7 @@ impl<const W: usize> SahCollapse<W> {
                 range[i] = (b.offset, b.count);
                 let leaf = area * costs.block * b.count.div_ceil(block) as f32;
                 cost[i] = [leaf; W];
+                total = leaf;
                 continue;
             }
             let (l, r) = (i + 1, b.offset as usize);
@@ -95,6 +101,9 @@ impl<const W: usize> SahCollapse<W> {
                 f32::INFINITY
             };
             let as_node = area * costs.node + dist[W - 1].0;
+            if i == 0 {
+                total = as_node;
+            }
             opened[i] = as_node < as_leaf || count > costs.max_leaf;
             node_split[i] = dist[W - 1].1;
             cost[i][0] = as_leaf.min(as_node);
@@ -113,6 +122,7 @@ impl<const W: usize> SahCollapse<W> {
             opened,
             range,
             node_split,
+            total,
         }
     }
 
@@ -173,3 +183,7 @@ impl<const W: usize> WideBvh<W> {
         total / (root_box.half_area() as f64).max(f64::MIN_POSITIVE)
     }
 }
+
+#[cfg(test)]
+#[path = "wide_collapse_tests.rs"]
+mod tests;

@@ -128,7 +128,7 @@ impl LeafSplitter<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::{Aabb, BuildOptions, Bvh, Bvh8, WideBvh};
+    use crate::{Aabb, BuildOptions, Bvh, Bvh8, Collapse, WideBvh};
     use candela_testkit::SplitMix64 as Rng;
     use glam::Vec3;
 
@@ -160,6 +160,7 @@ mod tests {
         let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
         let opts = BuildOptions {
             leaf_block: 4,
+            collapse: Collapse::Greedy,
             ..BuildOptions::default()
         };
         let bvh = Bvh::build(&boxes, &centroids, opts);
