@@ -15,6 +15,9 @@ use rayon::prelude::*;
 
 /// Ranges at least this large are split in parallel with `rayon::join`.
 const PARALLEL_MIN: usize = 4096;
+/// Bins per axis for the SAH sweep (32 and 8 measured no better: BENCHMARKS.md,
+/// "The SAH collapse").
+const BINS: usize = 16;
 /// Below this depth the build may use SAH; deeper it uses object median
 /// splits, which halve the range, so the tree depth stays below
 /// `SAH_DEPTH_LIMIT + 32` and the fixed traversal stack never overflows.
@@ -237,7 +240,7 @@ fn split(
         BuildStrategy::Sah if depth >= SAH_DEPTH_LIMIT => {
             (n > max_leaf).then(|| median_split(refs, &rb.centroids))
         }
-        BuildStrategy::Sah => match sah_split_binned(opts, refs, rb) {
+        BuildStrategy::Sah => match sah_split(opts, refs, rb) {
             Some(mid) => Some(mid),
             None if n > max_leaf => Some(median_split(refs, &rb.centroids)),
             None => None,
@@ -259,25 +262,11 @@ fn median_split(refs: &mut [PrimRef], cbounds: &BoxA) -> usize {
     mid
 }
 
-/// [`sah_split`] with the bin count of the options (8, 16, 32 or 64).
-fn sah_split_binned(opts: &BuildOptions, refs: &mut [PrimRef], rb: &RangeBounds) -> Option<usize> {
-    match opts.sah_bins {
-        ..=8 => sah_split::<8>(opts, refs, rb),
-        9..=16 => sah_split::<16>(opts, refs, rb),
-        17..=32 => sah_split::<32>(opts, refs, rb),
-        _ => sah_split::<64>(opts, refs, rb),
-    }
-}
-
-/// Binned SAH over all three axes in one pass, `BINS` bins per axis. Returns the partition point
+/// Binned SAH over all three axes in one pass. Returns the partition point
 /// when splitting is cheaper than a leaf (or when the leaf would exceed the
 /// size limit), `None` for a leaf or when no bin boundary separates the
 /// centroids.
-fn sah_split<const BINS: usize>(
-    opts: &BuildOptions,
-    refs: &mut [PrimRef],
-    rb: &RangeBounds,
-) -> Option<usize> {
+fn sah_split(opts: &BuildOptions, refs: &mut [PrimRef], rb: &RangeBounds) -> Option<usize> {
     let n = refs.len();
     // A tree for the SAH collapse charges leaves per primitive: the collapse
     // decides the leaves again (merging subtrees) and counts blocks there.
@@ -298,7 +287,7 @@ fn sah_split<const BINS: usize>(
     }));
     let mut bins = [[(BoxA::EMPTY, 0u32); BINS]; 3];
     for r in refs.iter() {
-        let k = bin_index::<BINS>(r.centroid, lo, scale);
+        let k = bin_index(r.centroid, lo, scale);
         for a in 0..3 {
             let bin = &mut bins[a][k[a]];
             bin.0 = bin.0.union(r.bounds);
@@ -336,16 +325,14 @@ fn sah_split<const BINS: usize>(
     if !split_cost.is_finite() || (n <= opts.max_leaf_size && leaf_cost <= split_cost) {
         return None;
     }
-    let mid = partition(refs, |r| {
-        bin_index::<BINS>(r.centroid, lo, scale)[axis] < split_bin
-    });
+    let mid = partition(refs, |r| bin_index(r.centroid, lo, scale)[axis] < split_bin);
     (mid > 0 && mid < n).then_some(mid)
 }
 
 /// Bin of a centroid on each axis. `as usize` saturates (and maps NaN to
 /// 0), so a stray value cannot index out of range.
 #[inline(always)]
-fn bin_index<const BINS: usize>(c: Vec3A, lo: Vec3A, scale: Vec3A) -> [usize; 3] {
+fn bin_index(c: Vec3A, lo: Vec3A, scale: Vec3A) -> [usize; 3] {
     // Clamped in float first, so the conversion is a plain truncation;
     // `max` with 0 sends NaN (from infinite boxes) to bin 0.
     let f = ((c - lo) * scale)

@@ -78,15 +78,14 @@ pub struct BuildOptions {
     /// again, merging subtrees); the binary build then charges each
     /// primitive, so that the collapse has small leaves to choose from.
     pub leaf_block: usize,
-    /// Bins per axis of the binned SAH (8, 16, 32 or 64; others round up).
-    pub sah_bins: usize,
     /// How a wide tree is collapsed from this binary one.
     pub collapse: Collapse,
     /// For [`Collapse::Sah`]: the cost of one wide node's box test, in the
     /// units of `intersection_cost` (the cost of one leaf block's test).
-    /// By instruction counts a node test costs about 0.4 block tests
-    /// (BENCHMARKS.md, "Filled 8-wide nodes"); 0.25–0.5 give the same trees
-    /// to within a few per cent of the work per ray.
+    /// By instruction counts a node test costs about 0.4 block tests, but
+    /// its 256 bytes miss the cache more often on incoherent rays: 0.5
+    /// gave the fewest instructions per ray and 2 the best rates (fewer,
+    /// fuller nodes; BENCHMARKS.md, "The SAH collapse").
     pub wide_node_cost: f32,
 }
 
@@ -98,9 +97,8 @@ impl Default for BuildOptions {
             traversal_cost: 1.0,
             intersection_cost: 1.0,
             leaf_block: 1,
-            sah_bins: 16,
             collapse: Collapse::Sah,
-            wide_node_cost: 0.5,
+            wide_node_cost: 2.0,
         }
     }
 }

@@ -190,8 +190,12 @@ fn check(boxes: &[Aabb], rng: &mut Rng, rays: usize, label: &str) {
                     panic!("{label} {strategy:?}/{max_leaf} ({name}): {e}");
                 }
             }
-            assert_eq!(filled.nodes().len(), wide.nodes().len());
-            assert_eq!(filled8.nodes().len(), wide8.nodes().len());
+            // Same nodes, unless the SAH collapse counted other blocks
+            // (the build's leaf block against the fill's 4).
+            if collapse == Collapse::Greedy || opts.leaf_block == 4 {
+                assert_eq!(filled.nodes().len(), wide.nodes().len());
+                assert_eq!(filled8.nodes().len(), wide8.nodes().len());
+            }
             assert_padded_aligned(&filled8_padded, label);
             let world = bvh.bounds();
             for k in 0..rays {

@@ -65,9 +65,6 @@ pub struct RaysArgs {
     /// counts blocks of 4).
     #[arg(long)]
     pub leaf_block: Option<usize>,
-    /// Override the binned SAH's bins per axis (8, 16, 32 or 64).
-    #[arg(long)]
-    pub sah_bins: Option<usize>,
     /// Override how the binary tree is collapsed into the wide one.
     #[arg(long, value_enum)]
     pub collapse: Option<CollapseArg>,

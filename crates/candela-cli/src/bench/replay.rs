@@ -28,7 +28,6 @@ pub fn run(args: &RaysArgs) -> Result<()> {
     opts.intersection_cost = args.isect_cost.unwrap_or(opts.intersection_cost);
     opts.max_leaf_size = args.max_leaf.unwrap_or(opts.max_leaf_size);
     opts.leaf_block = args.leaf_block.unwrap_or(opts.leaf_block);
-    opts.sah_bins = args.sah_bins.unwrap_or(opts.sah_bins);
     opts.collapse = args.collapse.map_or(opts.collapse, Into::into);
     opts.wide_node_cost = args.node_cost.unwrap_or(opts.wide_node_cost);
     let accel = Accel::build_with_options(&soup, &[], opts, args.layout.into());
