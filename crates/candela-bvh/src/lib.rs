@@ -50,12 +50,14 @@ pub enum BuildStrategy {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Collapse {
     /// Repeatedly open the child of largest area until the node is full;
-    /// binary leaves stay leaves.
+    /// binary leaves stay leaves. The default: the SAH collapse gives fewer
+    /// instructions and better diffuse-ray rates but slower primary rays
+    /// (BENCHMARKS.md, "The SAH collapse").
+    #[default]
     Greedy,
     /// The collapse of least SAH cost, by dynamic programming over the
     /// binary nodes (Ylitie et al. 2017); it may also merge small subtrees
     /// into one leaf. See `wide_collapse.rs`.
-    #[default]
     Sah,
 }
 
@@ -97,7 +99,7 @@ impl Default for BuildOptions {
             traversal_cost: 1.0,
             intersection_cost: 1.0,
             leaf_block: 1,
-            collapse: Collapse::Sah,
+            collapse: Collapse::Greedy,
             wide_node_cost: 2.0,
         }
     }

@@ -4,13 +4,14 @@
 //! Each node holds the boxes of up to `W` children in structure-of-arrays
 //! form, so one set of `W`-lane operations tests all of them (as in
 //! Embree's BVH4/BVH8 and Wald et al., "Getting Rid of Packets", 2008).
-//! By default the collapse is the one of least SAH cost, found by dynamic
-//! programming over the binary nodes (Ylitie et al. 2017,
+//! By default ([`crate::Collapse::Greedy`]) collapsing repeatedly opens the
+//! child with the largest surface area, the one the SAH deems most likely to
+//! be visited, until `W` children are reached (the greedy collapse of Wald
+//! et al. and of pbrt-v4's wide BVH discussions); a leaf is never opened.
+//! [`crate::Collapse::Sah`] instead takes the collapse of least SAH cost,
+//! found by dynamic programming over the binary nodes (Ylitie et al. 2017,
 //! `wide_collapse.rs`), which may also merge small subtrees into one leaf.
-//! [`crate::Collapse::Greedy`] instead repeatedly opens the child with the
-//! largest surface area, the one the SAH deems most likely to be visited,
-//! until `W` children are reached (the greedy collapse of Wald et al. and of
-//! pbrt-v4's wide BVH discussions); a leaf is never opened. Either way the
+//! Either way the
 //! primitive order is the binary tree's, unless
 //! [`WideBvh::from_binary_filled`] then splits leaves of two SIMD blocks
 //! into the lanes still free (`wide_fill.rs`).

@@ -103,6 +103,7 @@ fn table_optimum_matches_exhaustive_search() {
             leaf_block: 4,
             intersection_cost: 4.0, // binary leaves of one or two primitives
             wide_node_cost: node,
+            collapse: Collapse::Sah,
             ..BuildOptions::default()
         };
         let opts_collapse = BuildOptions {
@@ -163,6 +164,7 @@ fn sah_collapse_never_dearer_than_greedy() {
         let opts = BuildOptions {
             leaf_block: 4,
             wide_node_cost: node,
+            collapse: Collapse::Sah,
             ..BuildOptions::default()
         };
         let bvh = build(&boxes, opts);
@@ -202,6 +204,7 @@ fn same_wide_tree_for_any_thread_count() {
     let boxes = random_boxes(&mut Rng(13), 20_000, 0.3);
     let opts = BuildOptions {
         leaf_block: 4,
+        collapse: Collapse::Sah,
         ..BuildOptions::default()
     };
     let on = |threads| {
