@@ -30,6 +30,20 @@ pub(crate) enum Lane {
     },
 }
 
+impl Lane {
+    /// Binary node `i` as a lane: a leaf lane for a leaf, else a node.
+    pub(crate) fn of(bin: &[crate::node::Node], i: usize) -> Self {
+        match bin[i] {
+            b if b.is_leaf() => Lane::Leaf {
+                bounds: b.bounds(),
+                first: b.offset,
+                count: b.count,
+            },
+            _ => Lane::Node(i),
+        }
+    }
+}
+
 /// Splits leaves, given the primitive boxes (by caller's id) and the
 /// primitive order, whose leaf ranges it permutes in place.
 pub(crate) struct LeafSplitter<'a> {
@@ -114,7 +128,7 @@ impl LeafSplitter<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::{Aabb, BuildOptions, Bvh, Bvh8, WideBvh};
+    use crate::{Aabb, BuildOptions, Bvh, Bvh8, Collapse, WideBvh};
     use candela_testkit::SplitMix64 as Rng;
     use glam::Vec3;
 
@@ -146,6 +160,7 @@ mod tests {
         let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
         let opts = BuildOptions {
             leaf_block: 4,
+            collapse: Collapse::Greedy,
             ..BuildOptions::default()
         };
         let bvh = Bvh::build(&boxes, &centroids, opts);
