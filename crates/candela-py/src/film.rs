@@ -181,22 +181,14 @@ impl PyFilm {
         d.set_item("radiance_sq", rgb(|p| p.radiance_sq)?)?;
         d.set_item("albedo", rgb(|p| p.albedo)?)?;
         d.set_item("normal", rgb(|p| p.normal)?)?;
-        let f64s = |f: fn(&PixelSums) -> f64| {
-            PyArray1::from_vec(py, px.iter().map(f).collect()).reshape([h, w])
-        };
-        d.set_item("lum", f64s(|p| p.lum)?)?;
-        d.set_item("lum_sq", f64s(|p| p.lum_sq)?)?;
-        d.set_item("depth", f64s(|p| p.depth)?)?;
-        let u32s = |f: fn(&PixelSums) -> u32| {
-            PyArray1::from_vec(py, px.iter().map(f).collect()).reshape([h, w])
-        };
-        d.set_item("count", u32s(|p| p.count)?)?;
-        d.set_item("depth_count", u32s(|p| p.depth_count)?)?;
-        let u64s = |f: fn(&PixelSums) -> u64| {
-            PyArray1::from_vec(py, px.iter().map(f).collect()).reshape([h, w])
-        };
-        d.set_item("nodes", u64s(|p| p.nodes)?)?;
-        d.set_item("prim_tests", u64s(|p| p.prim_tests)?)?;
+        let plane = |name: &str, array: PyResult<Bound<'py, PyAny>>| d.set_item(name, array?);
+        plane("lum", per_pixel(py, px, w, h, |p| p.lum))?;
+        plane("lum_sq", per_pixel(py, px, w, h, |p| p.lum_sq))?;
+        plane("depth", per_pixel(py, px, w, h, |p| p.depth))?;
+        plane("count", per_pixel(py, px, w, h, |p| p.count))?;
+        plane("depth_count", per_pixel(py, px, w, h, |p| p.depth_count))?;
+        plane("nodes", per_pixel(py, px, w, h, |p| p.nodes))?;
+        plane("prim_tests", per_pixel(py, px, w, h, |p| p.prim_tests))?;
         Ok(d)
     }
 
@@ -296,4 +288,16 @@ impl PyFilm {
             p.film.width, p.film.height, p.origin, p.full.0, p.full.1, p.stats.samples
         )
     }
+}
+
+/// One value of each pixel's sums as an (H, W) array.
+fn per_pixel<'py, T: numpy::Element>(
+    py: Python<'py>,
+    px: &[PixelSums],
+    w: usize,
+    h: usize,
+    f: impl Fn(&PixelSums) -> T,
+) -> PyResult<Bound<'py, PyAny>> {
+    let array = PyArray1::from_vec(py, px.iter().map(f).collect()).reshape([h, w])?;
+    Ok(array.into_any())
 }

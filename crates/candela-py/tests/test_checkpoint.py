@@ -142,6 +142,13 @@ def test_candela_resume_hands_a_distributed_checkpoint_to_the_dask_front(cli_bin
     candela.write_checkpoint(ck, first, settings=resolved, scene_hash=scene.content_hash(**resolved), front=front,
                              elapsed_s=1.0)
     env = dict(os.environ, CANDELA_PYTHON=sys.executable)
+    # How a CLI render runs is the CLI's; the cluster runs this one as saved.
+    for flag in (["-s", "8"], ["-t", "1"], ["--time", "5"], ["--checkpoint-every", "1"]):
+        refused = subprocess.run([cli_bin, "resume", str(ck), *flag], env=env, capture_output=True, text=True,
+                                 timeout=60)
+        assert refused.returncode == 2, refused.stderr
+        assert len(refused.stderr.strip().splitlines()) == 1, refused.stderr
+        assert f"{flag[0]} applies to a checkpoint rendered by `candela`" in refused.stderr, refused.stderr
     done = subprocess.run([cli_bin, "resume", str(ck)], env=env, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert "4/8 units" in done.stderr and "5/8 units" not in done.stderr, done.stderr

@@ -431,6 +431,13 @@ impl Accel {
         }
     }
 
+    /// Whether queries take the AVX2 traversal (an 8-wide tree on a CPU
+    /// with it, unless a test turned it off).
+    #[cfg(test)]
+    fn uses_avx2(&self) -> bool {
+        matches!(&self.tree, Tree::Wide8(w) if w.bvh.uses_avx2())
+    }
+
     /// Closest hit with `t` in `(0, ray.t_max)`.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
         self.intersect_counted(ray, &mut ())

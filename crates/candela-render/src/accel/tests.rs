@@ -197,8 +197,12 @@ fn degenerate_scenes_match_brute_force() {
 /// and finite `t_max`.
 #[test]
 fn avx2_path_matches_portable_path() {
-    if !candela_bvh::has_avx2() {
-        eprintln!("skipped: this CPU has no AVX2");
+    let avx2_cpu = if candela_bvh::has_avx2() {
+        Ok(())
+    } else {
+        Err("this CPU has no AVX2 and FMA")
+    };
+    if candela_testkit::optional_dependency(avx2_cpu, "CANDELA_REQUIRE_AVX2").is_none() {
         return;
     }
     let mut rng = Rng(33);
@@ -215,6 +219,10 @@ fn avx2_path_matches_portable_path() {
     let avx2 = Accel::build_with_layout(&tris, &spheres, BuildStrategy::Sah, Layout::Wide8);
     let mut portable = avx2.clone();
     portable.set_avx2(false);
+    assert!(
+        avx2.uses_avx2() && !portable.uses_avx2(),
+        "the two paths differ"
+    );
     let (mut hits, mut from_surface) = (0, 0);
     for k in 0..20_000 {
         let mut ray = if k % 4 == 0 {

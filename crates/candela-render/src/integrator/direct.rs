@@ -237,12 +237,17 @@ fn estimate_hemisphere<R: PathRecorder>(
 pub struct SpawnOrigins([Option<(Vec3, f32)>; 2]);
 
 impl SpawnOrigins {
+    /// The slot of `w`'s side of the geometric normal (1: below).
+    #[inline(always)]
+    fn side(hit: &SurfaceHit, w: Vec3) -> usize {
+        usize::from(w.dot(hit.ng) < 0.0)
+    }
+
     /// The origin for a ray from `hit` toward `w` and its distance from
     /// `hit.p`, computed and kept if this side has none yet.
     #[inline(always)]
     fn toward(&mut self, hit: &SurfaceHit, w: Vec3) -> (Vec3, f32) {
-        let side = usize::from(w.dot(hit.ng) < 0.0);
-        *self.0[side].get_or_insert_with(|| {
+        *self.0[Self::side(hit, w)].get_or_insert_with(|| {
             let origin = hit.spawn_origin(w);
             (origin, (origin - hit.p).length())
         })
@@ -252,8 +257,7 @@ impl SpawnOrigins {
     /// (and not kept: the bounce is the vertex's last ray).
     #[inline(always)]
     pub fn origin_toward(&self, hit: &SurfaceHit, w: Vec3) -> Vec3 {
-        let side = usize::from(w.dot(hit.ng) < 0.0);
-        match self.0[side] {
+        match self.0[Self::side(hit, w)] {
             Some((origin, _)) => origin,
             None => hit.spawn_origin(w),
         }
