@@ -89,6 +89,15 @@ pub struct BuildOptions {
     /// gave the fewest instructions per ray and 2 the best rates (fewer,
     /// fuller nodes; BENCHMARKS.md, "The SAH collapse").
     pub wide_node_cost: f32,
+    /// For [`Collapse::Sah`], and for the leaf splits of
+    /// [`WideBvh::from_binary_filled`]: the cost of entering a leaf before
+    /// its first block's test, in the units of `intersection_cost`. A
+    /// leaf visit costs about 100 instructions before its first triangle
+    /// (the leaf call and the ray's registers saved around it) against
+    /// about 45 per block test and 35 per node step, so the measured ratio
+    /// is about 2; 0 charges blocks only (BENCHMARKS.md, "A leaf cost for
+    /// the SAH collapse").
+    pub wide_leaf_cost: f32,
 }
 
 impl Default for BuildOptions {
@@ -101,6 +110,7 @@ impl Default for BuildOptions {
             leaf_block: 1,
             collapse: Collapse::Greedy,
             wide_node_cost: 2.0,
+            wide_leaf_cost: 0.0,
         }
     }
 }

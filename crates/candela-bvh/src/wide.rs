@@ -131,6 +131,8 @@ impl<const W: usize> WideBvh<W> {
                 boxes,
                 order: &mut order,
                 block,
+                leaf_cost: options.wide_leaf_cost
+                    / options.intersection_cost.max(f32::MIN_POSITIVE),
             });
         if !bin.is_empty() {
             let opening = match options.collapse {
@@ -140,6 +142,7 @@ impl<const W: usize> WideBvh<W> {
                     CollapseCosts {
                         node: options.wide_node_cost,
                         block: options.intersection_cost,
+                        leaf: options.wide_leaf_cost,
                         // Blocks as the leaves are tested: the fill's, else the build's.
                         block_size: fill.map_or(options.leaf_block, |(_, b)| b as usize).max(1)
                             as u32,

@@ -10,8 +10,9 @@
 //! the choices. With `A(n)` the surface area of `n`'s box (the chance that a
 //! ray through the root enters it, up to a constant):
 //!
-//! - one lane as a leaf: `C_leaf(n) = A(n) · c_block · ⌈count(n) / block⌉`,
-//!   allowed for up to `max_leaf` primitives (a binary leaf is always one);
+//! - one lane as a leaf: `C_leaf(n) = A(n) · (c_leaf + c_block ·
+//!   ⌈count(n) / block⌉)`, allowed for up to `max_leaf` primitives (a
+//!   binary leaf is always one);
 //! - one lane as a wide node: `C_node(n) = A(n) · c_node + D(n, W)`, where
 //!   `D(n, j) = min_{0<k<j} C(left, k) + C(right, j − k)` spreads `j` lanes
 //!   over the two children;
@@ -19,7 +20,13 @@
 //!
 //! Unlike the paper's, our leaves are tested in SIMD blocks, so the leaf
 //! cost counts blocks, not primitives, and the leaf limit is the build's
-//! (two blocks). The table is filled children first (a binary child's index
+//! (two blocks). The paper's leaf costs only its triangles; ours also
+//! charges `c_leaf` per leaf entered, for what a leaf visit costs before its
+//! first block (the out-of-line leaf call and the ray's registers saved
+//! around it, about twice a block test by instruction counts; BENCHMARKS.md,
+//! "Leaf runs and the closest-hit leaf call"). Without it the programme
+//! prefers many small leaves, which rays leaving a surface then enter one
+//! by one. The table is filled children first (a binary child's index
 //! is larger than its parent's), in index order, so the result is the same
 //! for any number of build threads.
 
@@ -34,10 +41,20 @@ pub(crate) struct CollapseCosts {
     pub(crate) node: f32,
     /// One leaf block's test.
     pub(crate) block: f32,
+    /// Entering a leaf, before its first block.
+    pub(crate) leaf: f32,
     /// Primitives per leaf block.
     pub(crate) block_size: u32,
     /// The most primitives a merged leaf may hold.
     pub(crate) max_leaf: u32,
+}
+
+impl CollapseCosts {
+    /// The cost of a leaf lane of `count` primitives whose box has half
+    /// area `area`.
+    pub(crate) fn leaf_lane(&self, area: f32, count: u32) -> f32 {
+        area * (self.leaf + self.block * count.div_ceil(self.block_size.max(1)) as f32)
+    }
 }
 
 /// The filled table: per binary node, the best cost and choice for each
@@ -69,13 +86,12 @@ impl<const W: usize> SahCollapse<W> {
         let mut range = vec![(0u32, 0u32); n];
         let mut node_split = vec![0u8; n];
         let mut total = 0.0;
-        let block = costs.block_size.max(1);
         for i in (0..n).rev() {
             let b = &bin[i];
             let area = b.bounds().half_area();
             if b.is_leaf() {
                 range[i] = (b.offset, b.count);
-                let leaf = area * costs.block * b.count.div_ceil(block) as f32;
+                let leaf = costs.leaf_lane(area, b.count);
                 cost[i] = [leaf; W];
                 total = leaf;
                 continue;
@@ -96,7 +112,7 @@ impl<const W: usize> SahCollapse<W> {
             }
             let count = range[i].1;
             let as_leaf = if count <= costs.max_leaf {
-                area * costs.block * count.div_ceil(block) as f32
+                costs.leaf_lane(area, count)
             } else {
                 f32::INFINITY
             };
@@ -161,10 +177,11 @@ impl<const W: usize> SahCollapse<W> {
 
 impl<const W: usize> WideBvh<W> {
     /// The tree's SAH cost: `(Σ A(node) · node_cost + Σ A(leaf) ·
-    /// ⌈count / block⌉) / A(root)` over wide nodes and leaf lanes, the
-    /// expected node and block tests of a ray through the root's box that
-    /// hits nothing (what [`crate::Collapse::Sah`] minimises).
-    pub fn sah_cost(&self, node_cost: f32, block: u32) -> f64 {
+    /// (leaf_cost + ⌈count / block⌉)) / A(root)` over wide nodes and leaf
+    /// lanes, the expected cost of the node, leaf and block tests of a ray
+    /// through the root's box that hits nothing, in block tests (what
+    /// [`crate::Collapse::Sah`] minimises).
+    pub fn sah_cost(&self, node_cost: f32, leaf_cost: f32, block: u32) -> f64 {
         let Some(root) = self.nodes.first() else {
             return 0.0;
         };
@@ -174,7 +191,8 @@ impl<const W: usize> WideBvh<W> {
             for l in 0..W {
                 let area = n.lane_bounds(l).half_area() as f64;
                 if n.count[l] > 0 {
-                    total += area * n.count[l].div_ceil(block.max(1)) as f64;
+                    let blocks = n.count[l].div_ceil(block.max(1)) as f64;
+                    total += area * (leaf_cost as f64 + blocks);
                 } else if !n.lane_bounds(l).is_empty() {
                     total += area * node_cost as f64;
                 }

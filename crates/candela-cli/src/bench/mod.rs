@@ -71,6 +71,10 @@ pub struct RaysArgs {
     /// Override the SAH collapse's cost of a wide node test, relative to a block test.
     #[arg(long)]
     pub node_cost: Option<f32>,
+    /// Override the SAH collapse's cost of entering a leaf (before its
+    /// first block), relative to a block test; also the leaf splits' cost.
+    #[arg(long)]
+    pub leaf_cost: Option<f32>,
     /// Minimum seconds per timed measurement.
     #[arg(long, default_value_t = 1.0)]
     pub seconds: f64,

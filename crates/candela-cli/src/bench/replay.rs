@@ -30,6 +30,7 @@ pub fn run(args: &RaysArgs) -> Result<()> {
     opts.leaf_block = args.leaf_block.unwrap_or(opts.leaf_block);
     opts.collapse = args.collapse.map_or(opts.collapse, Into::into);
     opts.wide_node_cost = args.node_cost.unwrap_or(opts.wide_node_cost);
+    opts.wide_leaf_cost = args.leaf_cost.unwrap_or(opts.wide_leaf_cost);
     let accel = Accel::build_with_options(&soup, &[], opts, args.layout.into());
     print_sah_cost(&soup, opts, args.layout.into());
     drop(soup);
@@ -90,19 +91,20 @@ pub fn run(args: &RaysArgs) -> Result<()> {
     Ok(())
 }
 
-/// Prints the wide tree's SAH cost (node tests at the build's node cost,
-/// leaf blocks of 4), from a second build of the same tree.
+/// Prints the wide tree's SAH cost (node tests and leaf visits at the
+/// build's costs, leaf blocks of 4), from a second build of the same tree.
 fn print_sah_cost(soup: &[[Vec3; 3]], opts: BuildOptions, layout: Layout) {
     let boxes = primitive_boxes(soup, &[]);
     let bvh = binary_tree(soup, &[], opts);
+    let (node, leaf) = (opts.wide_node_cost, opts.wide_leaf_cost);
     let cost = match layout {
         Layout::Binary => return,
-        Layout::Wide4 => Bvh4::from_binary_filled(bvh, &boxes, 4).sah_cost(opts.wide_node_cost, 4),
-        Layout::Wide8 => Bvh8::from_binary_filled(bvh, &boxes, 4).sah_cost(opts.wide_node_cost, 4),
+        Layout::Wide4 => Bvh4::from_binary_filled(bvh, &boxes, 4).sah_cost(node, leaf, 4),
+        Layout::Wide8 => Bvh8::from_binary_filled(bvh, &boxes, 4).sah_cost(node, leaf, 4),
     };
     println!(
-        "SAH cost: {cost:.2} (collapse {:?}, node cost {})",
-        opts.collapse, opts.wide_node_cost
+        "SAH cost: {cost:.2} (collapse {:?}, node cost {node}, leaf cost {leaf})",
+        opts.collapse
     );
 }
 
