@@ -50,9 +50,9 @@ pub enum BuildStrategy {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Collapse {
     /// Repeatedly open the child of largest area until the node is full;
-    /// binary leaves stay leaves. The default: the SAH collapse gives fewer
-    /// instructions and better diffuse-ray rates but slower primary rays
-    /// (BENCHMARKS.md, "The SAH collapse").
+    /// binary leaves stay leaves. The default of [`BuildOptions`]; the
+    /// renderer's wide trees use [`Collapse::Sah`] (BENCHMARKS.md, "The SAH
+    /// collapse" and "A leaf cost for the SAH collapse").
     #[default]
     Greedy,
     /// The collapse of least SAH cost, by dynamic programming over the
@@ -84,10 +84,13 @@ pub struct BuildOptions {
     pub collapse: Collapse,
     /// For [`Collapse::Sah`]: the cost of one wide node's box test, in the
     /// units of `intersection_cost` (the cost of one leaf block's test).
-    /// By instruction counts a node test costs about 0.4 block tests, but
-    /// its 256 bytes miss the cache more often on incoherent rays: 0.5
-    /// gave the fewest instructions per ray and 2 the best rates (fewer,
-    /// fuller nodes; BENCHMARKS.md, "The SAH collapse").
+    /// By instruction counts a node step costs about 0.8 block tests, but
+    /// its 256 bytes miss the cache more often on incoherent rays. Without a
+    /// leaf cost, 0.5–1 gave the fewest instructions per ray and 2 the
+    /// smallest trees but slower primary rays; with a leaf cost of 1–3,
+    /// 1.5 keeps the instruction counts of 1 with fewer nodes than the
+    /// greedy collapse (BENCHMARKS.md, "The SAH collapse" and "A leaf cost
+    /// for the SAH collapse").
     pub wide_node_cost: f32,
     /// For [`Collapse::Sah`], and for the leaf splits of
     /// [`WideBvh::from_binary_filled`]: the cost of entering a leaf before
