@@ -9,13 +9,14 @@
 //! which also gathers the children's boxes.
 
 use crate::node::Node;
-use crate::{Aabb, BuildOptions, BuildStrategy};
+use crate::{Aabb, BuildOptions, BuildStrategy, Collapse};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
 /// Ranges at least this large are split in parallel with `rayon::join`.
 const PARALLEL_MIN: usize = 4096;
-/// Bins per axis for the SAH sweep.
+/// Bins per axis for the SAH sweep (32 and 8 measured no better: BENCHMARKS.md,
+/// "The SAH collapse").
 const BINS: usize = 16;
 /// Below this depth the build may use SAH; deeper it uses object median
 /// splits, which halve the range, so the tree depth stays below
@@ -267,7 +268,12 @@ fn median_split(refs: &mut [PrimRef], cbounds: &BoxA) -> usize {
 /// centroids.
 fn sah_split(opts: &BuildOptions, refs: &mut [PrimRef], rb: &RangeBounds) -> Option<usize> {
     let n = refs.len();
-    let block = opts.leaf_block.max(1) as u32;
+    // A tree for the SAH collapse charges leaves per primitive: the collapse
+    // decides the leaves again (merging subtrees) and counts blocks there.
+    let block = match opts.collapse {
+        Collapse::Sah => 1,
+        Collapse::Greedy => opts.leaf_block.max(1) as u32,
+    };
     let blocks = |count: u32| count.div_ceil(block) as f32;
     let lo = rb.centroids.min;
     let ext = (rb.centroids.max - rb.centroids.min).max(Vec3A::ZERO);

@@ -19,6 +19,7 @@ pub mod simd;
 mod traverse;
 mod validate;
 mod wide;
+mod wide_collapse;
 mod wide_fill;
 mod wide_traverse;
 mod wide_validate;
@@ -45,6 +46,21 @@ pub enum BuildStrategy {
     None,
 }
 
+/// How a binary tree is collapsed into a wide one ([`WideBvh::from_binary`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Collapse {
+    /// Repeatedly open the child of largest area until the node is full;
+    /// binary leaves stay leaves. The default of [`BuildOptions`]; the
+    /// renderer's wide trees use [`Collapse::Sah`] (BENCHMARKS.md, "The SAH
+    /// collapse" and "A leaf cost for the SAH collapse").
+    #[default]
+    Greedy,
+    /// The collapse of least SAH cost, by dynamic programming over the
+    /// binary nodes (Ylitie et al. 2017); it may also merge small subtrees
+    /// into one leaf. See `wide_collapse.rs`.
+    Sah,
+}
+
 /// Build parameters. The costs are relative; only their ratio matters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BuildOptions {
@@ -59,8 +75,32 @@ pub struct BuildOptions {
     pub intersection_cost: f32,
     /// Primitives are tested in blocks of this many (e.g. 4 with SIMD
     /// packets), so the SAH charges a leaf `ceil(n / block)` tests and
-    /// prefers leaf sizes that fill whole blocks.
+    /// prefers leaf sizes that fill whole blocks. With [`Collapse::Sah`]
+    /// it is the wide collapse that charges blocks (it chooses the leaves
+    /// again, merging subtrees); the binary build then charges each
+    /// primitive, so that the collapse has small leaves to choose from.
     pub leaf_block: usize,
+    /// How a wide tree is collapsed from this binary one.
+    pub collapse: Collapse,
+    /// For [`Collapse::Sah`]: the cost of one wide node's box test, in the
+    /// units of `intersection_cost` (the cost of one leaf block's test).
+    /// By instruction counts a node step costs about 0.8 block tests, but
+    /// its 256 bytes miss the cache more often on incoherent rays. Without a
+    /// leaf cost, 0.5–1 gave the fewest instructions per ray and 2 the
+    /// smallest trees but slower primary rays; with a leaf cost of 1–3,
+    /// 1.5 keeps the instruction counts of 1 with fewer nodes than the
+    /// greedy collapse (BENCHMARKS.md, "The SAH collapse" and "A leaf cost
+    /// for the SAH collapse").
+    pub wide_node_cost: f32,
+    /// For [`Collapse::Sah`], and for the leaf splits of
+    /// [`WideBvh::from_binary_filled`]: the cost of entering a leaf before
+    /// its first block's test, in the units of `intersection_cost`. A
+    /// leaf visit costs about 100 instructions before its first triangle
+    /// (the leaf call and the ray's registers saved around it) against
+    /// about 45 per block test and 35 per node step, so the measured ratio
+    /// is about 2; 0 charges blocks only (BENCHMARKS.md, "A leaf cost for
+    /// the SAH collapse").
+    pub wide_leaf_cost: f32,
 }
 
 impl Default for BuildOptions {
@@ -71,6 +111,9 @@ impl Default for BuildOptions {
             traversal_cost: 1.0,
             intersection_cost: 1.0,
             leaf_block: 1,
+            collapse: Collapse::Greedy,
+            wide_node_cost: 2.0,
+            wide_leaf_cost: 0.0,
         }
     }
 }
@@ -91,6 +134,8 @@ pub struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
     depth: u32,
+    /// The options it was built with (the wide collapse reads its own).
+    options: BuildOptions,
 }
 
 impl Bvh {
@@ -105,7 +150,13 @@ impl Bvh {
             nodes,
             order,
             depth,
+            options: opts,
         }
+    }
+
+    /// The options the tree was built with.
+    pub fn options(&self) -> &BuildOptions {
+        &self.options
     }
 
     /// `primitive_order()[slot]` is the caller's index of the primitive in

@@ -4,18 +4,24 @@
 //! Each node holds the boxes of up to `W` children in structure-of-arrays
 //! form, so one set of `W`-lane operations tests all of them (as in
 //! Embree's BVH4/BVH8 and Wald et al., "Getting Rid of Packets", 2008).
-//! Collapsing repeatedly opens the child with the largest surface area, the
-//! one the SAH deems most likely to be visited, until `W` children are
-//! reached (the greedy collapse of Wald et al. and of pbrt-v4's wide BVH
-//! discussions); a leaf is never opened. Leaves and the primitive order are
-//! the binary tree's, unless [`WideBvh::from_binary_filled`] then splits
-//! leaves of two SIMD blocks into the lanes still free (`wide_fill.rs`).
+//! By default ([`crate::Collapse::Greedy`]) collapsing repeatedly opens the
+//! child with the largest surface area, the one the SAH deems most likely to
+//! be visited, until `W` children are reached (the greedy collapse of Wald
+//! et al. and of pbrt-v4's wide BVH discussions); a leaf is never opened.
+//! [`crate::Collapse::Sah`] instead takes the collapse of least SAH cost,
+//! found by dynamic programming over the binary nodes (Ylitie et al. 2017,
+//! `wide_collapse.rs`), which may also merge small subtrees into one leaf.
+//! Either way the
+//! primitive order is the binary tree's, unless
+//! [`WideBvh::from_binary_filled`] then splits leaves of two SIMD blocks
+//! into the lanes still free (`wide_fill.rs`).
 //! [`Bvh4`] is traversed with SSE (baseline on x86_64), [`Bvh8`] with AVX2
 //! where the CPU has it and two SSE halves otherwise.
 
 use crate::node::Node;
+use crate::wide_collapse::{CollapseCosts, SahCollapse};
 use crate::wide_fill::{Lane, LeafSplitter};
-use crate::{Aabb, Bvh};
+use crate::{Aabb, Bvh, Collapse};
 
 /// The primitive order's entry for an unused slot (see [`WideBvh::pad_leaves`]).
 pub const PADDING: u32 = u32::MAX;
@@ -92,7 +98,8 @@ pub type Bvh4 = WideBvh<4>;
 pub type Bvh8 = WideBvh<8>;
 
 impl<const W: usize> WideBvh<W> {
-    /// Collapses a binary BVH, taking over its primitive order.
+    /// Collapses a binary BVH as its build options say
+    /// ([`crate::BuildOptions::collapse`]), taking over its primitive order.
     pub fn from_binary(bvh: Bvh) -> Self {
         Self::collapse(bvh, None)
     }
@@ -113,6 +120,7 @@ impl<const W: usize> WideBvh<W> {
         let Bvh {
             nodes: bin,
             mut order,
+            options,
             ..
         } = bvh;
         let mut nodes = Vec::with_capacity(bin.len() / (W / 2).max(1) + 1);
@@ -123,14 +131,31 @@ impl<const W: usize> WideBvh<W> {
                 boxes,
                 order: &mut order,
                 block,
+                leaf_cost: options.wide_leaf_cost
+                    / options.intersection_cost.max(f32::MIN_POSITIVE),
             });
         if !bin.is_empty() {
-            let root = if bin[0].is_leaf() {
-                vec![0]
-            } else {
-                vec![1, bin[0].offset as usize]
+            let opening = match options.collapse {
+                Collapse::Greedy => Opening::Greedy,
+                Collapse::Sah => Opening::Sah(SahCollapse::new(
+                    &bin,
+                    CollapseCosts {
+                        node: options.wide_node_cost,
+                        block: options.intersection_cost,
+                        leaf: options.wide_leaf_cost,
+                        // Blocks as the leaves are tested: the fill's, else the build's.
+                        block_size: fill.map_or(options.leaf_block, |(_, b)| b as usize).max(1)
+                            as u32,
+                        max_leaf: options.max_leaf_size.max(1) as u32,
+                    },
+                )),
             };
-            depth = emit(&bin, root, &mut nodes, 1, &mut splitter);
+            let root = if bin[0].is_leaf() {
+                vec![Lane::of(&bin, 0)]
+            } else {
+                opening.lanes(&bin, 0)
+            };
+            depth = emit(&bin, root, &opening, &mut nodes, 1, &mut splitter);
         }
         Self {
             nodes: crate::on_huge_pages(nodes),
@@ -205,41 +230,52 @@ impl Bvh8 {
     }
 }
 
-/// Writes a node for the binary nodes `lanes` (and, recursively, below);
-/// returns the depth reached.
+/// How the lanes of a wide node are chosen.
+enum Opening<const W: usize> {
+    /// Open the child of largest area until full.
+    Greedy,
+    /// Read the lanes from the table of least SAH cost.
+    Sah(SahCollapse<W>),
+}
+
+impl<const W: usize> Opening<W> {
+    /// The lanes of the wide node made for the binary interior node `i`.
+    fn lanes(&self, bin: &[Node], i: usize) -> Vec<Lane> {
+        match self {
+            Opening::Sah(table) => table.lanes(bin, i),
+            Opening::Greedy => {
+                let mut lanes = vec![i + 1, bin[i].offset as usize];
+                while lanes.len() < W {
+                    let widest = lanes
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, &i)| !bin[i].is_leaf())
+                        .max_by(|a, b| {
+                            bin[*a.1]
+                                .bounds()
+                                .half_area()
+                                .total_cmp(&bin[*b.1].bounds().half_area())
+                        });
+                    let Some((k, &i)) = widest else { break };
+                    lanes[k] = i + 1;
+                    lanes.push(bin[i].offset as usize);
+                }
+                lanes.into_iter().map(|i| Lane::of(bin, i)).collect()
+            }
+        }
+    }
+}
+
+/// Writes a node with `lanes` (and, recursively, below); returns the depth
+/// reached.
 fn emit<const W: usize>(
     bin: &[Node],
-    mut lanes: Vec<usize>,
+    mut lanes: Vec<Lane>,
+    opening: &Opening<W>,
     out: &mut Vec<WideNode<W>>,
     depth: u32,
     splitter: &mut Option<LeafSplitter>,
 ) -> u32 {
-    while lanes.len() < W {
-        let widest = lanes
-            .iter()
-            .enumerate()
-            .filter(|(_, &i)| !bin[i].is_leaf())
-            .max_by(|a, b| {
-                bin[*a.1]
-                    .bounds()
-                    .half_area()
-                    .total_cmp(&bin[*b.1].bounds().half_area())
-            });
-        let Some((k, &i)) = widest else { break };
-        lanes[k] = i + 1;
-        lanes.push(bin[i].offset as usize);
-    }
-    let mut lanes: Vec<Lane> = lanes
-        .into_iter()
-        .map(|i| match bin[i] {
-            b if b.is_leaf() => Lane::Leaf {
-                bounds: b.bounds(),
-                first: b.offset,
-                count: b.count,
-            },
-            _ => Lane::Node(i),
-        })
-        .collect();
     if let Some(s) = splitter {
         s.fill(&mut lanes, W);
     }
@@ -258,16 +294,10 @@ fn emit<const W: usize>(
                 out[me].count[lane] = count;
             }
             Lane::Node(i) => {
-                let b = &bin[i];
-                out[me].set_lane(lane, b.bounds());
+                out[me].set_lane(lane, bin[i].bounds());
                 out[me].child[lane] = out.len() as u32;
-                let d = emit(
-                    bin,
-                    vec![i + 1, b.offset as usize],
-                    out,
-                    depth + 1,
-                    splitter,
-                );
+                let below = opening.lanes(bin, i);
+                let d = emit(bin, below, opening, out, depth + 1, splitter);
                 deepest = deepest.max(d);
             }
         }

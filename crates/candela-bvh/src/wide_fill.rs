@@ -14,6 +14,10 @@
 //! has room (Wald et al., "Embree: A Kernel Framework for Efficient CPU Ray
 //! Tracing", 2014); here the binary SAH tree is kept and only its leaves of
 //! more than one block are split, largest box first, while lanes are free.
+//! With a cost `c` for entering a leaf (in block tests,
+//! [`crate::BuildOptions::wide_leaf_cost`]) the split pays when
+//! `(c + 1) (A(L) + A(R)) < (c + 2) A(P)`: each part entered is a leaf
+//! visit of its own.
 
 use crate::Aabb;
 
@@ -30,6 +34,20 @@ pub(crate) enum Lane {
     },
 }
 
+impl Lane {
+    /// Binary node `i` as a lane: a leaf lane for a leaf, else a node.
+    pub(crate) fn of(bin: &[crate::node::Node], i: usize) -> Self {
+        match bin[i] {
+            b if b.is_leaf() => Lane::Leaf {
+                bounds: b.bounds(),
+                first: b.offset,
+                count: b.count,
+            },
+            _ => Lane::Node(i),
+        }
+    }
+}
+
 /// Splits leaves, given the primitive boxes (by caller's id) and the
 /// primitive order, whose leaf ranges it permutes in place.
 pub(crate) struct LeafSplitter<'a> {
@@ -37,6 +55,8 @@ pub(crate) struct LeafSplitter<'a> {
     pub(crate) order: &'a mut [u32],
     /// Primitives per SIMD block: leaves of `block + 1 ..= 2 * block` are split.
     pub(crate) block: u32,
+    /// The cost of entering a leaf, in block tests.
+    pub(crate) leaf_cost: f32,
 }
 
 impl LeafSplitter<'_> {
@@ -83,7 +103,7 @@ impl LeafSplitter<'_> {
     /// at most one block each, sorted by box centre along one axis: the
     /// left box, the left count and the right box, with the slots
     /// reordered to match; `None` when no cut lowers `A(L) + A(R)` below
-    /// `2 A(P)` (or a box is not finite).
+    /// `(c + 2) / (c + 1) · A(P)` for leaf cost `c` (or a box is not finite).
     fn split(&mut self, first: u32, count: u32) -> Option<(Aabb, u32, Aabb)> {
         let boxes = self.boxes;
         let slots = &mut self.order[first as usize..(first + count) as usize];
@@ -93,7 +113,8 @@ impl LeafSplitter<'_> {
             ids.iter()
                 .fold(Aabb::EMPTY, |b, &i| b.union(boxes[i as usize]))
         };
-        let parent = union(slots).half_area();
+        let leaf = self.leaf_cost.max(0.0);
+        let bound = (leaf + 2.0) / (leaf + 1.0) * union(slots).half_area();
         let mut best: Option<(f32, Vec<u32>, usize)> = None;
         for axis in 0..3 {
             let mut ids = slots.to_vec();
@@ -101,7 +122,7 @@ impl LeafSplitter<'_> {
             ids.sort_by(|a, b| key(a).total_cmp(&key(b)));
             for k in n.saturating_sub(block).max(1)..=block.min(n - 1) {
                 let cost = union(&ids[..k]).half_area() + union(&ids[k..]).half_area();
-                if cost < 2.0 * parent && best.as_ref().is_none_or(|b| cost < b.0) {
+                if cost < bound && best.as_ref().is_none_or(|b| cost < b.0) {
                     best = Some((cost, ids.clone(), k));
                 }
             }
@@ -114,7 +135,8 @@ impl LeafSplitter<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::{Aabb, BuildOptions, Bvh, Bvh8, WideBvh};
+    use super::LeafSplitter;
+    use crate::{Aabb, BuildOptions, Bvh, Bvh8, Collapse, WideBvh};
     use candela_testkit::SplitMix64 as Rng;
     use glam::Vec3;
 
@@ -146,6 +168,7 @@ mod tests {
         let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
         let opts = BuildOptions {
             leaf_block: 4,
+            collapse: Collapse::Greedy,
             ..BuildOptions::default()
         };
         let bvh = Bvh::build(&boxes, &centroids, opts);
@@ -172,5 +195,62 @@ mod tests {
         let unsplit = Bvh8::from_binary_filled(bvh.clone(), &boxes[..10], 4);
         assert_eq!(unsplit.primitive_order(), bvh.primitive_order());
         assert_eq!(leaves(&unsplit), plain);
+    }
+
+    /// A leaf cost makes a split pay only when it shrinks the boxes more:
+    /// on the two-block leaves of a tree over random boxes, every split
+    /// made at leaf cost 3 has `A(L) + A(R) < 5/4 A(P)`, and fewer leaves
+    /// are split than at leaf cost 0, but some still are.
+    #[test]
+    fn leaf_cost_splits_fewer_leaves() {
+        let mut rng = Rng(8);
+        let boxes: Vec<Aabb> = (0..3000)
+            .map(|_| {
+                let c = rng.vec(-10.0, 10.0);
+                let h = rng.vec(0.01, 1.0);
+                Aabb::new(c - h, c + h)
+            })
+            .collect();
+        let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
+        let opts = BuildOptions {
+            leaf_block: 4,
+            collapse: Collapse::Greedy,
+            ..BuildOptions::default()
+        };
+        let bvh = Bvh::build(&boxes, &centroids, opts);
+        let two_block: Vec<(u32, u32)> = bvh
+            .nodes()
+            .iter()
+            .filter(|n| n.is_leaf() && n.count > 4)
+            .map(|n| (n.offset, n.count))
+            .collect();
+        let splits = |leaf_cost: f32| {
+            let mut order = bvh.primitive_order().to_vec();
+            let mut splitter = LeafSplitter {
+                boxes: &boxes,
+                order: &mut order,
+                block: 4,
+                leaf_cost,
+            };
+            let mut made = 0;
+            for &(first, count) in &two_block {
+                let parent = (first..first + count)
+                    .map(|s| boxes[bvh.primitive_order()[s as usize] as usize])
+                    .fold(Aabb::EMPTY, Aabb::union)
+                    .half_area();
+                if let Some((left, _, right)) = splitter.split(first, count) {
+                    let bound = (leaf_cost + 2.0) / (leaf_cost + 1.0) * parent;
+                    assert!(left.half_area() + right.half_area() < bound);
+                    made += 1;
+                }
+            }
+            made
+        };
+        let (cheap, dear) = (splits(0.0), splits(3.0));
+        assert!(
+            0 < dear && dear < cheap,
+            "{dear} at leaf cost 3, {cheap} at 0 of {}",
+            two_block.len()
+        );
     }
 }

@@ -60,6 +60,21 @@ pub struct RaysArgs {
     /// Override the largest leaf.
     #[arg(long)]
     pub max_leaf: Option<usize>,
+    /// Override the binary build's leaf block (the SAH then charges
+    /// `ceil(n / block)` primitive tests per leaf; the wide collapse still
+    /// counts blocks of 4).
+    #[arg(long)]
+    pub leaf_block: Option<usize>,
+    /// Override how the binary tree is collapsed into the wide one.
+    #[arg(long, value_enum)]
+    pub collapse: Option<CollapseArg>,
+    /// Override the SAH collapse's cost of a wide node test, relative to a block test.
+    #[arg(long)]
+    pub node_cost: Option<f32>,
+    /// Override the SAH collapse's cost of entering a leaf (before its
+    /// first block), relative to a block test; also the leaf splits' cost.
+    #[arg(long)]
+    pub leaf_cost: Option<f32>,
     /// Minimum seconds per timed measurement.
     #[arg(long, default_value_t = 1.0)]
     pub seconds: f64,
@@ -80,6 +95,24 @@ pub struct ScalingArgs {
     /// BVH node layout.
     #[arg(long, value_enum, default_value_t = NodeLayout::Auto)]
     pub layout: NodeLayout,
+}
+
+/// The wide collapse as a command-line value.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum CollapseArg {
+    /// Open the child of largest area until a node is full.
+    Greedy,
+    /// The collapse of least SAH cost (dynamic programming).
+    Sah,
+}
+
+impl From<CollapseArg> for candela_bvh::Collapse {
+    fn from(c: CollapseArg) -> Self {
+        match c {
+            CollapseArg::Greedy => Self::Greedy,
+            CollapseArg::Sah => Self::Sah,
+        }
+    }
 }
 
 /// The node layout as a command-line value.

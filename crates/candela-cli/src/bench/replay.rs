@@ -3,7 +3,10 @@
 use super::files::{read_hits, read_rays, read_tri};
 use super::{report_line, throughput, RaysArgs};
 use anyhow::{bail, Result};
-use candela_render::accel::{triangle_soup, Accel, TraversalStats};
+use candela_bvh::{BuildOptions, Bvh4, Bvh8};
+use candela_render::accel::{
+    binary_tree, primitive_boxes, triangle_soup, Accel, Layout, TraversalStats,
+};
 use candela_render::geometry::Ray;
 use glam::Vec3;
 
@@ -24,7 +27,12 @@ pub fn run(args: &RaysArgs) -> Result<()> {
     let mut opts = Accel::default_options(args.bvh.into(), args.layout.into());
     opts.intersection_cost = args.isect_cost.unwrap_or(opts.intersection_cost);
     opts.max_leaf_size = args.max_leaf.unwrap_or(opts.max_leaf_size);
+    opts.leaf_block = args.leaf_block.unwrap_or(opts.leaf_block);
+    opts.collapse = args.collapse.map_or(opts.collapse, Into::into);
+    opts.wide_node_cost = args.node_cost.unwrap_or(opts.wide_node_cost);
+    opts.wide_leaf_cost = args.leaf_cost.unwrap_or(opts.wide_leaf_cost);
     let accel = Accel::build_with_options(&soup, &[], opts, args.layout.into());
+    print_sah_cost(&soup, opts, args.layout.into());
     drop(soup);
     let info = accel.info();
     println!(
@@ -81,6 +89,23 @@ pub fn run(args: &RaysArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Prints the wide tree's SAH cost (node tests and leaf visits at the
+/// build's costs, leaf blocks of 4), from a second build of the same tree.
+fn print_sah_cost(soup: &[[Vec3; 3]], opts: BuildOptions, layout: Layout) {
+    let boxes = primitive_boxes(soup, &[]);
+    let bvh = binary_tree(soup, &[], opts);
+    let (node, leaf) = (opts.wide_node_cost, opts.wide_leaf_cost);
+    let cost = match layout {
+        Layout::Binary => return,
+        Layout::Wide4 => Bvh4::from_binary_filled(bvh, &boxes, 4).sah_cost(node, leaf, 4),
+        Layout::Wide8 => Bvh8::from_binary_filled(bvh, &boxes, 4).sah_cost(node, leaf, 4),
+    };
+    println!(
+        "SAH cost: {cost:.2} (collapse {:?}, node cost {node}, leaf cost {leaf})",
+        opts.collapse
+    );
 }
 
 /// Compares closest hits with the reference. Ids must match and `t` agree
