@@ -60,9 +60,10 @@ pub struct RaysArgs {
     /// Override the largest leaf.
     #[arg(long)]
     pub max_leaf: Option<usize>,
-    /// Override the binary build's leaf block (the SAH then charges
-    /// `ceil(n / block)` primitive tests per leaf; the wide collapse still
-    /// counts blocks of 4).
+    /// Override the binary build's leaf block under `--collapse greedy` (the
+    /// SAH then charges `ceil(n / block)` primitive tests per leaf; the wide
+    /// collapse still counts blocks of 4). No effect under `--collapse sah`,
+    /// whose binary build always charges single primitives.
     #[arg(long)]
     pub leaf_block: Option<usize>,
     /// Override how the binary tree is collapsed into the wide one.
