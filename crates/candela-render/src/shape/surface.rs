@@ -70,7 +70,7 @@ fn away(x: f32, sign: f32) -> f32 {
         bits.wrapping_sub(1)
     };
     let stepped = if x == 0.0 { sign_bit | 1 } else { stepped };
-    let moves = (sign > 0.0 || sign < 0.0) && !x.is_nan() && !(x.is_infinite() && magnitude_up);
+    let moves = sign.abs() > 0.0 && !x.is_nan() && !(x.is_infinite() && magnitude_up);
     f32::from_bits(if moves { stepped } else { bits })
 }
 
