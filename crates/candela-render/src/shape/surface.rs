@@ -53,88 +53,46 @@ pub fn spawn_ray(sp: &SurfacePoint, w: Vec3) -> Ray {
 }
 
 /// Rounds `x` one float further in the direction of `sign` (the addition
-/// that produced it may have rounded back toward the surface): one step of
-/// the bit pattern, up in magnitude when `x` and `sign` agree in sign, down
-/// otherwise; a zero steps to the smallest subnormal of `sign`'s sign. NaNs,
-/// infinities that cannot go further and a zero or NaN `sign` stay. Written
-/// with selects, not branches: the three per origin were data-dependent
-/// jumps (about 170 instructions per origin, 2% of the CS184 render loop;
-/// BENCHMARKS.md, "Light samples outside their shadow rays").
-#[inline(always)]
+/// that produced it may have rounded back toward the surface).
 fn away(x: f32, sign: f32) -> f32 {
-    let (bits, sign_bit) = (x.to_bits(), sign.to_bits() & 0x8000_0000);
-    let magnitude_up = bits & 0x8000_0000 == sign_bit;
-    let stepped = if magnitude_up {
-        bits.wrapping_add(1)
+    if sign > 0.0 {
+        next_up(x)
+    } else if sign < 0.0 {
+        -next_up(-x)
     } else {
-        bits.wrapping_sub(1)
-    };
-    let stepped = if x == 0.0 { sign_bit | 1 } else { stepped };
-    let moves = sign.abs() > 0.0 && !x.is_nan() && !(x.is_infinite() && magnitude_up);
-    f32::from_bits(if moves { stepped } else { bits })
+        x
+    }
+}
+
+/// The next representable float above `x`.
+fn next_up(x: f32) -> f32 {
+    if x.is_infinite() && x > 0.0 || x.is_nan() {
+        return x;
+    }
+    if x == 0.0 {
+        return f32::from_bits(1);
+    }
+    let bits = x.to_bits();
+    f32::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// `away` as it was written first, with branches: the reference.
-    fn away_by_branches(x: f32, sign: f32) -> f32 {
-        fn next_up(x: f32) -> f32 {
-            if x.is_infinite() && x > 0.0 || x.is_nan() {
-                return x;
-            }
-            if x == 0.0 {
-                return f32::from_bits(1);
-            }
-            let bits = x.to_bits();
-            f32::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
-        }
-        if sign > 0.0 {
-            next_up(x)
-        } else if sign < 0.0 {
-            -next_up(-x)
-        } else {
-            x
-        }
-    }
-
     #[test]
-    fn away_steps_one_ulp_toward_sign() {
-        let xs = [
-            1.0f32,
-            -1.0,
-            0.0,
-            -0.0,
-            3.5e-40,
-            -3.5e-40,
-            f32::from_bits(1),
-            1e30,
-            -2.0,
-            f32::MAX,
-            -f32::MAX,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::NAN,
-        ];
-        let signs = [1.0f32, -1.0, 1e-30, -1e-30, 0.0, -0.0, f32::NAN];
-        for &x in &xs {
-            for &s in &signs {
-                let (got, want) = (away(x, s), away_by_branches(x, s));
-                assert_eq!(got.to_bits(), want.to_bits(), "away({x}, {s})");
-                if x.is_finite() && s != 0.0 && !s.is_nan() {
-                    // One step toward `s`, nothing strictly between.
-                    assert!(
-                        if s > 0.0 { got > x } else { got < x },
-                        "away({x}, {s}) = {got}"
-                    );
-                    let mid = ((x as f64 + got as f64) * 0.5) as f32;
-                    assert!(mid == x || mid == got, "away({x}, {s}) skipped a float");
-                }
-            }
+    fn next_up_steps_one_ulp() {
+        for x in [1.0f32, -1.0, 0.0, -0.0, 3.5e-40, 1e30, -2.0] {
+            let y = next_up(x);
+            assert!(y > x, "{x} -> {y}");
+            // Nothing lies strictly between x and y.
+            assert!(
+                ((x as f64 + y as f64) * 0.5) as f32 == x
+                    || ((x as f64 + y as f64) * 0.5) as f32 == y
+            );
         }
-        assert_eq!(away(1.0, 1.0), 1.0 + f32::EPSILON);
-        assert_eq!(away(-1.0, 1.0), -1.0 + f32::EPSILON / 2.0);
+        assert_eq!(next_up(1.0), 1.0 + f32::EPSILON);
+        assert_eq!(next_up(-1.0), -1.0 + f32::EPSILON / 2.0);
     }
 
     #[test]
