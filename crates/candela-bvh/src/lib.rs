@@ -16,6 +16,8 @@ mod build;
 mod huge_pages;
 mod node;
 pub mod simd;
+#[cfg(test)]
+mod test_boxes;
 mod traverse;
 mod validate;
 mod wide;

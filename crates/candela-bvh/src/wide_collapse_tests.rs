@@ -3,24 +3,9 @@
 
 use super::{CollapseCosts, SahCollapse};
 use crate::node::Node;
+use crate::test_boxes::{build, random_boxes};
 use crate::{Aabb, BuildOptions, Bvh, Bvh4, Bvh8, Collapse, WideBvh};
 use candela_testkit::SplitMix64 as Rng;
-use glam::Vec3;
-
-fn random_boxes(rng: &mut Rng, n: usize, size: f32) -> Vec<Aabb> {
-    (0..n)
-        .map(|_| {
-            let c = rng.vec(-10.0, 10.0);
-            let h = rng.vec(0.01, size);
-            Aabb::new(c - h, c + h)
-        })
-        .collect()
-}
-
-fn build(boxes: &[Aabb], opts: BuildOptions) -> Bvh {
-    let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
-    Bvh::build(boxes, &centroids, opts)
-}
 
 /// Exhaustive search: the cheapest cost of binary node `n` as one lane,
 /// trying every cut of its subtree into at most `W` lanes.

@@ -136,9 +136,19 @@ impl LeafSplitter<'_> {
 #[cfg(test)]
 mod tests {
     use super::LeafSplitter;
+    use crate::test_boxes::{build, random_boxes};
     use crate::{Aabb, BuildOptions, Bvh, Bvh8, Collapse, WideBvh};
     use candela_testkit::SplitMix64 as Rng;
-    use glam::Vec3;
+
+    /// The binary tree the greedy collapse starts from, leaves in blocks of 4.
+    fn greedy_tree(boxes: &[Aabb]) -> Bvh {
+        let opts = BuildOptions {
+            leaf_block: 4,
+            collapse: Collapse::Greedy,
+            ..BuildOptions::default()
+        };
+        build(boxes, opts)
+    }
 
     /// Leaf sizes per node: (lanes used, sizes of the leaf lanes).
     fn leaves<const W: usize>(t: &WideBvh<W>) -> Vec<(usize, Vec<u32>)> {
@@ -157,21 +167,8 @@ mod tests {
     /// node. Too few boxes (not the tree's input) split nothing.
     #[test]
     fn two_block_leaves_fill_free_lanes() {
-        let mut rng = Rng(7);
-        let boxes: Vec<Aabb> = (0..3000)
-            .map(|_| {
-                let c = rng.vec(-10.0, 10.0);
-                let h = rng.vec(0.01, 0.3);
-                Aabb::new(c - h, c + h)
-            })
-            .collect();
-        let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
-        let opts = BuildOptions {
-            leaf_block: 4,
-            collapse: Collapse::Greedy,
-            ..BuildOptions::default()
-        };
-        let bvh = Bvh::build(&boxes, &centroids, opts);
+        let boxes = random_boxes(&mut Rng(7), 3000, 0.3);
+        let bvh = greedy_tree(&boxes);
         let plain = leaves(&Bvh8::from_binary(bvh.clone()));
         let filled_tree = Bvh8::from_binary_filled(bvh.clone(), &boxes, 4);
         filled_tree.validate(&boxes).unwrap();
@@ -203,21 +200,8 @@ mod tests {
     /// are split than at leaf cost 0, but some still are.
     #[test]
     fn leaf_cost_splits_fewer_leaves() {
-        let mut rng = Rng(8);
-        let boxes: Vec<Aabb> = (0..3000)
-            .map(|_| {
-                let c = rng.vec(-10.0, 10.0);
-                let h = rng.vec(0.01, 1.0);
-                Aabb::new(c - h, c + h)
-            })
-            .collect();
-        let centroids: Vec<Vec3> = boxes.iter().map(Aabb::center).collect();
-        let opts = BuildOptions {
-            leaf_block: 4,
-            collapse: Collapse::Greedy,
-            ..BuildOptions::default()
-        };
-        let bvh = Bvh::build(&boxes, &centroids, opts);
+        let boxes = random_boxes(&mut Rng(8), 3000, 1.0);
+        let bvh = greedy_tree(&boxes);
         let two_block: Vec<(u32, u32)> = bvh
             .nodes()
             .iter()

@@ -34,10 +34,41 @@ fn origin_above(rng: &mut Rng, p: Vec3, s: f32) -> Vec3 {
     p + s * rng.log(-1.0, 1.5) * Vec3::new(a.x, 1.0, a.z)
 }
 
+/// Rays cast at a surface's shared vertices and edges, and those that
+/// missed every triangle.
+#[derive(Default)]
+struct Tally {
+    rays: u32,
+    escaped: u32,
+}
+
+impl Tally {
+    /// Casts `tries` rays at `target` from origins above it (scale `s`),
+    /// counting those steep enough to be sure of a hit.
+    fn cast(
+        &mut self,
+        rng: &mut Rng,
+        target: Vec3,
+        s: f32,
+        tries: usize,
+        v: &[Vec3],
+        tris: &[[u32; 3]],
+    ) {
+        for _ in 0..tries {
+            let o = origin_above(rng, target, s);
+            if !steep_enough((target - o).normalize(), v, tris) {
+                continue;
+            }
+            self.rays += 1;
+            self.escaped += escapes(o, target, v, tris) as u32;
+        }
+    }
+}
+
 #[test]
 fn rays_through_fan_vertices_hit() {
     let mut rng = Rng(51);
-    let (mut rays, mut escaped) = (0, 0);
+    let mut tally = Tally::default();
     for _ in 0..3000 {
         let c = rng.vec(-100.0, 100.0);
         let s = rng.log(-2.0, 2.0);
@@ -50,15 +81,9 @@ fn rays_through_fan_vertices_hit() {
             v.push(c + s * Vec3::new(r * phi.cos(), rng.range(-0.2, 0.2), -r * phi.sin()));
         }
         let tris: Vec<[u32; 3]> = (1..=k).map(|i| [0, i, i % k + 1]).collect();
-        for _ in 0..20 {
-            let o = origin_above(&mut rng, c, s);
-            if !steep_enough((c - o).normalize(), &v, &tris) {
-                continue;
-            }
-            rays += 1;
-            escaped += escapes(o, c, &v, &tris) as u32;
-        }
+        tally.cast(&mut rng, c, s, 20, &v, &tris);
     }
+    let Tally { rays, escaped } = tally;
     assert!(rays > 20_000, "{rays}");
     assert_eq!(
         escaped, 0,
@@ -70,7 +95,7 @@ fn rays_through_fan_vertices_hit() {
 fn rays_through_grid_vertices_and_edges_hit() {
     let mut rng = Rng(52);
     let n = 24;
-    let (mut rays, mut escaped) = (0, 0);
+    let mut tally = Tally::default();
     for (c, s) in [(Vec3::ZERO, 1.0), (Vec3::new(700.0, -30.0, 2e3), 5.0)] {
         let h: Vec<f32> = (0..(n + 1) * (n + 1))
             .map(|_| rng.range(-0.1, 0.1))
@@ -104,16 +129,10 @@ fn rays_through_grid_vertices_and_edges_hit() {
             }
         }
         for &p in &targets {
-            for _ in 0..3 {
-                let o = origin_above(&mut rng, p, s);
-                if !steep_enough((p - o).normalize(), &v, &tris) {
-                    continue;
-                }
-                rays += 1;
-                escaped += escapes(o, p, &v, &tris) as u32;
-            }
+            tally.cast(&mut rng, p, s, 3, &v, &tris);
         }
     }
+    let Tally { rays, escaped } = tally;
     assert!(rays > 10_000, "{rays}");
     assert_eq!(
         escaped, 0,
