@@ -90,17 +90,6 @@ impl TexturedEmission {
 }
 
 impl AreaShape {
-    /// A corner and the emitting side's unit normal of a planar lamp (the
-    /// plane it emits from), `None` for a sphere.
-    #[inline(always)]
-    pub(super) fn plane(&self) -> Option<(Vec3, Vec3)> {
-        match self {
-            AreaShape::Triangle { v, normal } => Some((v[0], *normal)),
-            AreaShape::Rect { shape, normal } => Some((shape.origin, *normal)),
-            AreaShape::Sphere { .. } => None,
-        }
-    }
-
     /// Surface area.
     pub fn area(&self) -> f32 {
         match self {
@@ -172,7 +161,11 @@ impl AreaLight {
         sampling: solid_angle::SolidAngleSampling,
     ) -> Option<LightSample> {
         let (wi, point) = solid_angle::sample(&self.shape, sampling, p, u)?;
-        let (corner, normal) = self.shape.plane()?;
+        let (normal, corner) = match &self.shape {
+            AreaShape::Triangle { v, normal } => (*normal, v[0]),
+            AreaShape::Rect { shape, normal } => (*normal, shape.origin),
+            AreaShape::Sphere { .. } => return None,
+        };
         let cos_light = -normal.dot(wi);
         if cos_light <= 0.0 {
             return None;

@@ -49,10 +49,13 @@ impl LampPlane {
         let Light::Area(area) = light else {
             return None;
         };
-        let (corner, normal) = area.shape.plane()?;
-        let extent = match &area.shape {
-            AreaShape::Triangle { v, .. } => (v[1] - v[0]).abs() + (v[2] - v[0]).abs(),
-            AreaShape::Rect { shape, .. } => shape.edge0.abs() + shape.edge1.abs(),
+        let (corner, normal, extent) = match &area.shape {
+            AreaShape::Triangle { v, normal } => {
+                (v[0], *normal, (v[1] - v[0]).abs() + (v[2] - v[0]).abs())
+            }
+            AreaShape::Rect { shape, normal } => {
+                (shape.origin, *normal, shape.edge0.abs() + shape.edge1.abs())
+            }
             AreaShape::Sphere { .. } => return None,
         };
         Some(Self {

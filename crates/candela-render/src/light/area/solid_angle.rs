@@ -120,7 +120,11 @@ pub(super) fn choose(shape: &AreaShape, p: Vec3, size: &LampSize) -> Option<Soli
     // The gate first: most shading points are far from the lamp, and this
     // test is a handful of multiplications (the lamp's area and centre are
     // precomputed).
-    let (corner, normal) = shape.plane()?;
+    let (corner, normal) = match shape {
+        AreaShape::Triangle { v, normal } => (v[0], *normal),
+        AreaShape::Rect { shape, normal } => (shape.origin, *normal),
+        AreaShape::Sphere { .. } => return None,
+    };
     if size.area < SOLID_ANGLE_GATE * (size.centre - p).length_squared() {
         return None;
     }
