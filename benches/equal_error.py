@@ -41,6 +41,9 @@ Candela -m 1000 with its Russian roulette: 0.6^1000 of the light is
 beyond reach), 2 threads each, Mitsuba's llvm_ad_rgb variant with its
 independent sampler and the `path` integrator as the scene file sets them;
 Candela's own defaults (Sobol, MIS, -l 1) unless --candela-args says more.
+On a CPU with AVX-512, Dr.Jit compiles 16-wide AVX-512 kernels; --mitsuba-isa
+avx2 makes it compile the 8-wide AVX2 kernels it uses on machines without
+AVX-512 (the kind issue 13 names), for figures comparable across them.
 
 Run with a Python that has Mitsuba 3 and numpy (setup in
 ../shared/bench/README.md); the scene pairs are ../shared/scenes/cs184/NAME.dae
@@ -82,6 +85,8 @@ def mitsuba_child(args):
     import drjit as dr
     import mitsuba as mi
 
+    if args.isa == "avx2":
+        limit_llvm_to_avx2(dr)
     mi.set_variant(args.variant)
     dr.set_thread_count(args.threads)
     per = min(args.spp, PASS_SPP)
@@ -94,6 +99,25 @@ def mitsuba_child(args):
         done += n
         k += 1
     np.save(args.out, (total / done).astype(np.float32))
+
+
+def limit_llvm_to_avx2(dr):
+    """Makes Dr.Jit's LLVM back end compile 8-wide AVX2 kernels on a CPU with
+    AVX-512, where it would otherwise pick 16-wide AVX-512 ones (1.5x faster
+    per sample on the Zen 4 VMs): the peer as it runs on the issue's machine
+    kind (AVX2, no AVX-512). The Embree inside Mitsuba keeps its own choice
+    (its single-ray kernels gain little from AVX-512: BENCHMARKS.md).
+    `jit_llvm_set_target` is Dr.Jit's C++ entry point, not in its Python API."""
+    import ctypes
+
+    core = ctypes.CDLL(str(Path(dr.__file__).parent / "libdrjit-core.so"))
+    set_target = core._Z19jit_llvm_set_targetPKcS0_j
+    set_target.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_uint32]
+    features = "+avx2,+fma,+f16c,+bmi,+bmi2,+lzcnt,+popcnt," + ",".join(
+        "-" + f for f in ("avx512f", "avx512vl", "avx512bw", "avx512dq", "avx512cd", "avx512bf16",
+                          "avx512vnni", "avx512vbmi", "avx512vbmi2", "avx512bitalg", "avx512vpopcntdq",
+                          "avx512ifma", "avx512fp16"))
+    set_target(b"znver3", features.encode(), 8)
 
 
 # ---------------------------------------------------------------- runs
@@ -134,7 +158,8 @@ class Renderers:
         a = self.args
         return [sys.executable, str(Path(__file__).resolve()), "_mitsuba", "--xml", str(a.xml),
                 "--spp", str(spp), "--seed", str(seed), "--out", str(out), "--threads",
-                str(a.threads), "--variant", a.variant, "--max-depth", str(a.max_depth)]
+                str(a.threads), "--variant", a.variant, "--max-depth", str(a.max_depth),
+                "--isa", a.mitsuba_isa]
 
     def candela(self, spp, seed, tag):
         out = self.work / f"{tag}.exr"
@@ -248,7 +273,9 @@ def machine():
     try:
         for line in Path("/proc/cpuinfo").read_text().splitlines():
             if line.startswith("model name"):
-                return f"{line.split(':', 1)[1].strip()}, {os.cpu_count()} cores"
+                flags = Path("/proc/cpuinfo").read_text()
+                isa = "AVX-512" if " avx512f" in flags else "AVX2" if " avx2" in flags else "no AVX2"
+                return f"{line.split(':', 1)[1].strip()}, {os.cpu_count()} cores, {isa}"
     except OSError:
         pass
     return platform.machine()
@@ -301,6 +328,7 @@ def report(args, levels, res, ref, ref_var, meta, cmds, started, loads):
     print(f"\n### {args.scene}: Candela against Mitsuba 3 at equal error "
           f"({started:%Y-%m-%d %H:%M} UTC)\n")
     print(f"Machine: {machine()}; load average (1 min) over the sitting: {', '.join(loads)}.")
+    print(f"Mitsuba's LLVM kernels: {args.mitsuba_isa} (--mitsuba-isa).")
     print(f"Reference: Candela, {meta['spp']} spp in {meta['settings']['parts']} parts "
           f"({meta['seconds']} s, made {meta['date']}, load {meta['load']}):")
     print("```\n" + "\n".join(meta["commands"]) + "\n```")
@@ -355,7 +383,7 @@ def main():
     if len(sys.argv) > 1 and sys.argv[1] == "_mitsuba":
         c = argparse.ArgumentParser()
         c.add_argument("_mode")
-        for name in ("--xml", "--out", "--variant"):
+        for name in ("--xml", "--out", "--variant", "--isa"):
             c.add_argument(name, required=True)
         for name in ("--spp", "--seed", "--threads", "--max-depth"):
             c.add_argument(name, type=int, required=True)
@@ -371,6 +399,9 @@ def main():
     p.add_argument("--candela-args", default="", help="extra Candela flags, e.g. '-l 4'")
     p.add_argument("--variant", default="llvm_ad_rgb")
     p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--mitsuba-isa", choices=("native", "avx2"), default="native",
+                   help="native: Dr.Jit's LLVM kernels for this CPU (16-wide AVX-512 where it has it); "
+                        "avx2: 8-wide AVX2 kernels, as on a machine without AVX-512")
     p.add_argument("--dae", type=Path)
     p.add_argument("--xml", type=Path)
     p.add_argument("--workdir", default="/tmp/equal_error")
