@@ -3,7 +3,7 @@
 # medians. On a shared machine a ratio means something only when both sides
 # are measured side by side, several times (../shared/bench/README.md).
 #
-#   benches/replay_vs_embree.sh [-n PAIRS] [-s SECONDS] CANDELA[,CANDELA2...] PYTHON MESH.tri RAYS.rays [MESH RAYS ...]
+#   benches/replay_vs_embree.sh [-n PAIRS] [-s SECONDS] [-i ISA] CANDELA[,CANDELA2...] PYTHON MESH.tri RAYS.rays [MESH RAYS ...]
 #
 # CANDELA: the release binary (target/release/candela), or several
 # comma-separated (e.g. a copy of main's build and this one, to measure a
@@ -16,20 +16,25 @@
 # pass by CPU time (`candela bench rays -t 1`, Embree's batch API, which
 # calls its single-ray kernels once per ray). Prints per set the median
 # Mrays per CPU-second of each and the median of the per-pair ratios.
+# -i ISA caps the kernels Embree picks (its `max_isa`, e.g. avx2 on a CPU with
+# AVX-512, for figures comparable with machines without it): the script then
+# builds benches/embree_max_isa.c with cc and preloads it into the Embree runs.
 set -euo pipefail
 
 pairs=5
 seconds=1
-while getopts "n:s:" opt; do
+isa=
+while getopts "n:s:i:" opt; do
     case $opt in
         n) pairs=$OPTARG ;;
         s) seconds=$OPTARG ;;
-        *) echo "usage: $0 [-n PAIRS] [-s SECONDS] CANDELA PYTHON MESH RAYS [MESH RAYS ...]" >&2; exit 2 ;;
+        i) isa=$OPTARG ;;
+        *) echo "usage: $0 [-n PAIRS] [-s SECONDS] [-i ISA] CANDELA PYTHON MESH RAYS [MESH RAYS ...]" >&2; exit 2 ;;
     esac
 done
 shift $((OPTIND - 1))
 if [ $# -lt 4 ] || [ $(( ($# - 2) % 2 )) -ne 0 ]; then
-    echo "usage: $0 [-n PAIRS] [-s SECONDS] CANDELA PYTHON MESH RAYS [MESH RAYS ...]" >&2
+    echo "usage: $0 [-n PAIRS] [-s SECONDS] [-i ISA] CANDELA PYTHON MESH RAYS [MESH RAYS ...]" >&2
     exit 2
 fi
 IFS=, read -r -a candelas <<< "$1"
@@ -37,11 +42,18 @@ python=$2
 shift 2
 here=$(cd "$(dirname "$0")" && pwd)
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+shim_dir=$(mktemp -d)
+trap 'rm -rf "$log" "$shim_dir"' EXIT
+embree_env=()
+if [ -n "$isa" ]; then
+    cc -O2 -shared -fPIC -o "$shim_dir/embree_max_isa.so" "$here/embree_max_isa.c" -ldl
+    embree_lib=$("$python" -c 'import embreex, glob, os; d = os.path.dirname(os.path.dirname(embreex.__file__)); print((glob.glob(d + "/embreex.libs/libembree4*") + glob.glob(d + "/embreex/libembree4*"))[0])')
+    embree_env=(env LD_PRELOAD="$shim_dir/embree_max_isa.so" EMBREE_REAL_LIB="$embree_lib" EMBREE_EXTRA_CONFIG="max_isa=$isa")
+fi
 
 echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(uname -n), $(lscpu | sed -n 's/^Model name: *//p' | head -1), load: $(cut -d' ' -f1-3 /proc/loadavg)"
 for k in "${!candelas[@]}"; do echo "# candela$((k + 1)): ${candelas[$k]}"; done
-echo "# embree: $("$python" -c 'import embreex, importlib.metadata as m; print("embreex", m.version("embreex"))')"
+echo "# embree: $("$python" -c 'import embreex, importlib.metadata as m; print("embreex", m.version("embreex"))'), kernels: ${isa:-its own choice} ($(grep -q ' avx512f' /proc/cpuinfo && echo 'the CPU has AVX-512' || echo 'no AVX-512 on this CPU'))"
 
 run_candela() { # mesh rays pair
     local k
@@ -52,7 +64,7 @@ run_candela() { # mesh rays pair
     done
 }
 run_embree() { # mesh rays pair
-    "$python" "$here/replay_embree.py" "$1" "$2" --seconds "$seconds" --single 0 |
+    "${embree_env[@]}" "$python" "$here/replay_embree.py" "$1" "$2" --seconds "$seconds" --single 0 |
         awk -v set="$(basename "$2" .rays)" -v pair="$3" \
             '/embree batch/ { print set, pair, "embree", $3, $6 }'
 }
