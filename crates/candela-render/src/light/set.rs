@@ -184,7 +184,7 @@ impl LightSet {
     #[inline]
     pub(super) fn choose_by_power_within(&self, u: f32) -> Option<(u32, f32, Range<f32>)> {
         let last = self.power_choices.len().checked_sub(1)?;
-        let k = self.cdf.partition_point(|&c| c <= u).min(last);
+        let k = entries_at_most(&self.cdf, u).min(last);
         let choice = &self.power_choices[k];
         Some((choice.light, choice.pmf, choice.start..choice.end))
     }
@@ -331,10 +331,62 @@ fn emission_pmf(lights: &[Light], scene_radius: f32) -> (Vec<f32>, Vec<f32>) {
     (pmf, cdf)
 }
 
+/// Entries of a running sum this short are counted rather than searched.
+const SHORT_CDF: usize = 8;
+
+/// How many entries of the non-decreasing running sum `cdf` are at most `u`:
+/// `cdf.partition_point(|&c| c <= u)`, the same index. A scene's few lamps
+/// are counted without branches (the binary search cost about 15
+/// instructions per light sample); longer sums are searched.
+#[inline(always)]
+fn entries_at_most(cdf: &[f32], u: f32) -> usize {
+    if cdf.len() <= SHORT_CDF {
+        cdf.iter().map(|&c| usize::from(c <= u)).sum()
+    } else {
+        cdf.partition_point(|&c| c <= u)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::light::{AmbientLight, AreaLight, AreaShape, PointLight};
+
+    /// The count is the binary search's index for running sums of every
+    /// length up to past the short ones, with repeated entries (lights of no
+    /// power), at and between the entries, at 0, 1 and NaN.
+    #[test]
+    fn counting_finds_the_binary_searchs_index() {
+        let mut x = 0x9e37_79b9u32;
+        let mut unit = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / 16_777_216.0
+        };
+        for len in 0..=2 * SHORT_CDF {
+            for _ in 0..200 {
+                let weights: Vec<f32> = (0..len)
+                    .map(|_| if unit() < 0.2 { 0.0 } else { unit() })
+                    .collect();
+                let total: f32 = weights.iter().sum::<f32>().max(1e-3);
+                let mut running = 0.0;
+                let cdf: Vec<f32> = weights
+                    .iter()
+                    .map(|w| {
+                        running += w / total;
+                        running
+                    })
+                    .collect();
+                let mut probes = vec![0.0, 1.0, f32::NAN, unit(), unit()];
+                probes.extend(cdf.iter().flat_map(|&c| [c, c.next_down(), c.next_up()]));
+                for u in probes {
+                    let expected = cdf.partition_point(|&c| c <= u);
+                    assert_eq!(entries_at_most(&cdf, u), expected, "{cdf:?} at {u}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn lights_are_chosen_in_proportion_to_power() {

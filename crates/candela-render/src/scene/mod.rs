@@ -6,6 +6,8 @@
 //! lights and the camera. Integrators only see this.
 
 mod geometry;
+#[cfg(test)]
+mod geometry_tests;
 mod lights;
 mod names;
 mod visibility;

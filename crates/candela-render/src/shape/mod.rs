@@ -15,7 +15,10 @@ pub use hit::SurfaceHit;
 pub use prim::{PrimKind, PrimRef};
 pub use sphere::{intersect_sphere, sphere_surface_point, sphere_uv};
 pub use surface::{gamma, offset_ray_origin, spawn_ray, SurfacePoint};
-pub use triangle::{intersect_triangle, triangle_surface_point, TriangleHit, TriangleRay};
+pub use triangle::{
+    intersect_triangle, triangle_normal, triangle_surface_point,
+    triangle_surface_point_with_normal, TriangleHit, TriangleRay,
+};
 pub use triangle4::{intersect_triangle4, occluded_triangle4, TrianglePacket, TriangleRay4};
 
 #[cfg(test)]

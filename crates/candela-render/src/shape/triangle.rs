@@ -211,9 +211,28 @@ pub(super) fn t_error_bound(p: &[Vec3; 3], z: Vec3, e: [f32; 3], inv_det: f32) -
 /// The hit point rebuilt from barycentrics (more accurate than `o + t d`),
 /// its error bound, and the unit normal `normalize((v1 - v0) x (v2 - v0))`.
 pub fn triangle_surface_point(v: &[Vec3; 3], b1: f32, b2: f32) -> SurfacePoint {
+    triangle_surface_point_with_normal(v, b1, b2, triangle_normal(v))
+}
+
+/// The unit normal of triangle `v` by its winding, `(v1 − v0) × (v2 − v0)`
+/// normalised; zero for a degenerate triangle.
+#[inline]
+pub fn triangle_normal(v: &[Vec3; 3]) -> Vec3 {
+    (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero()
+}
+
+/// [`triangle_surface_point`] given the triangle's [`triangle_normal`] `n`
+/// (a scene keeps one per triangle: a hit then reads it rather than
+/// computing a cross product and a square root).
+#[inline]
+pub fn triangle_surface_point_with_normal(
+    v: &[Vec3; 3],
+    b1: f32,
+    b2: f32,
+    n: Vec3,
+) -> SurfacePoint {
     let b0 = 1.0 - b1 - b2;
     let p = b0 * v[0] + b1 * v[1] + b2 * v[2];
     let p_error = gamma(7) * ((b0 * v[0]).abs() + (b1 * v[1]).abs() + (b2 * v[2]).abs());
-    let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
     SurfacePoint { p, p_error, n }
 }
