@@ -103,7 +103,7 @@ def mitsuba_child(args):
 
 def limit_llvm_to_avx2(dr):
     """Makes Dr.Jit's LLVM back end compile 8-wide AVX2 kernels on a CPU with
-    AVX-512, where it would otherwise pick 16-wide AVX-512 ones (1.5x faster
+    AVX-512, where it would otherwise pick 16-wide AVX-512 ones (1.6-1.7x faster
     per sample on the Zen 4 VMs): the peer as it runs on the issue's machine
     kind (AVX2, no AVX-512). The Embree inside Mitsuba keeps its own choice
     (its single-ray kernels gain little from AVX-512: BENCHMARKS.md).
