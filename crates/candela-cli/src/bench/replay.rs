@@ -62,12 +62,18 @@ pub fn run(args: &RaysArgs) -> Result<()> {
     for r in &rays {
         accel.intersect_counted(r, &mut stats);
     }
+    let mut any_stats = TraversalStats::default();
+    for r in &rays {
+        accel.occluded_counted(r, &mut any_stats);
+    }
     let n = rays.len().max(1) as f64;
-    println!(
-        "closest hit: {:.1} nodes, {:.1} triangle tests per ray",
-        stats.nodes_visited as f64 / n,
-        stats.prims_tested as f64 / n
-    );
+    for (query, s) in [("closest", &stats), ("any", &any_stats)] {
+        println!(
+            "{query} hit: {:.1} nodes, {:.1} triangle tests per ray",
+            s.nodes_visited as f64 / n,
+            s.prims_tested as f64 / n
+        );
+    }
     let modes: &[bool] = if args.any_hit {
         &[true]
     } else {

@@ -172,19 +172,22 @@ impl<const W: usize> Wide<W> {
     }
 
     #[inline(always)]
-    fn occluded<S: StatsSink>(
-        &self,
-        ray: &Ray,
-        q: &RayBoxQuery,
-        tri_ray: &TriangleRay,
-        stats: &mut S,
-    ) -> bool {
-        let tr4 = TriangleRay4::new(tri_ray);
+    fn occluded<S: StatsSink>(&self, ray: &Ray, q: &RayBoxQuery, stats: &mut S) -> bool {
+        // The triangle test's set-up (a permutation, two divisions and the
+        // broadcasts) waits for the first leaf: most shadow rays toward a
+        // lamp cross only empty nodes (on the CS184 render, 0.38M leaf
+        // visits for 0.86M shadow rays) and never need it.
+        let mut tr4: Option<TriangleRay4> = None;
         let prefetch = |first, count| self.leaves.prefetch(first, count);
         // Compiled into the traversal loop (see `WideBvh::any_hit_leaves`).
         let test = {
             #[inline(always)]
-            |first, count, t_max| self.leaves.any(first, count, ray, &tr4, t_max)
+            |first, count, t_max| {
+                let tr4 = tr4.get_or_insert_with(|| {
+                    TriangleRay4::new(&TriangleRay::new(ray.origin, ray.dir))
+                });
+                self.leaves.any(first, count, ray, tr4, t_max)
+            }
         };
         self.bvh.any_hit_leaves(q, ray.t_max, stats, prefetch, test)
     }
@@ -485,17 +488,17 @@ impl Accel {
     #[inline]
     pub fn occluded_counted<S: StatsSink>(&self, ray: &Ray, stats: &mut S) -> bool {
         let q = RayBoxQuery::new(ray.origin, ray.dir);
-        let tri_ray = TriangleRay::new(ray.origin, ray.dir);
         match &self.tree {
             Tree::Binary(bvh, prims) => {
+                let tri_ray = TriangleRay::new(ray.origin, ray.dir);
                 let mut bary = (0.0, 0.0);
                 let test = |slot: u32, t_max: f32| {
                     self.test(&prims[slot as usize], ray, &tri_ray, t_max, &mut bary)
                 };
                 bvh.any_hit(&q, ray.t_max, stats, test)
             }
-            Tree::Wide4(w) => w.occluded(ray, &q, &tri_ray, stats),
-            Tree::Wide8(w) => w.occluded(ray, &q, &tri_ray, stats),
+            Tree::Wide4(w) => w.occluded(ray, &q, stats),
+            Tree::Wide8(w) => w.occluded(ray, &q, stats),
         }
     }
 
