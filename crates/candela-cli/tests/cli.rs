@@ -162,6 +162,42 @@ fn a_cell_renders_into_the_full_frame() {
 }
 
 #[test]
+fn exr_compression_changes_the_file_not_the_pixels() {
+    let dir = scratch("exr-compression");
+    let mut beauty = Vec::new();
+    for compression in ["zip", "none"] {
+        let out = dir.join(format!("{compression}.exr"));
+        let run = candela(&[
+            "-s",
+            "2",
+            "-q",
+            "--exr-compression",
+            compression,
+            "-f",
+            path(&out),
+        ]);
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        beauty.push(read_exr_layers(&out).expect("EXR reads back").beauty);
+    }
+    assert_eq!(beauty[0], beauty[1]);
+    let size = |name: &str| std::fs::metadata(dir.join(name)).unwrap().len();
+    // Raw 32-bit channels: at least 4 bytes per pixel per channel of the
+    // beauty image alone; the default ZIP file is smaller than that.
+    let raw_floor = 48 * 36 * 3 * 4;
+    assert!(size("none.exr") > raw_floor, "{}", size("none.exr"));
+    assert!(
+        size("zip.exr") < size("none.exr"),
+        "{} {}",
+        size("zip.exr"),
+        size("none.exr")
+    );
+}
+
+#[test]
 fn impossible_flags_are_usage_errors() {
     for args in [
         &["-a", "0", "0.05"][..],
@@ -176,6 +212,7 @@ fn impossible_flags_are_usage_errors() {
         &["--exposure", "nan"],
         &["-d", "0", "-b", "0.1"],
         &["--integrator", "photons"],
+        &["--exr-compression", "b44"],
         // A bounce past the depth, or with a view that picks its own.
         &["-m", "3", "--bounce", "4"],
         &["--bounce", "1", "--direct-only"],

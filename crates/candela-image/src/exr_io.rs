@@ -2,8 +2,9 @@
 //! EXR input for environment maps and references.
 //!
 //! # Channel names
-//! One single-part file, 32-bit float channels, ZIP (16 scanlines)
-//! compression, which is lossless and read by every EXR tool:
+//! One single-part file, 32-bit float channels, scanlines compressed
+//! losslessly as [`ExrCompression`] says (ZIP by default, which every EXR
+//! tool reads):
 //!
 //! | layer | channels | content |
 //! |---|---|---|
@@ -37,14 +38,50 @@ use std::collections::BTreeSet;
 use std::path::Path;
 
 use exr::prelude::{
-    read_first_flat_layer_from_file, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer,
-    LayerAttributes, SmallVec, Text, Vec2, WritableImage,
+    read_first_flat_layer_from_file, AnyChannel, AnyChannels, Blocks, Compression, Encoding,
+    FlatSamples, Image, Layer, LayerAttributes, LineOrder, SmallVec, Text, Vec2, WritableImage,
 };
 
 use crate::{atomic_write, GrayImage, ImageError, RenderInfo, RgbImage};
 
 /// The name of the variance layer (`variance.R/G/B`).
 pub const VARIANCE_LAYER: &str = "variance";
+
+/// How the scanlines of an EXR file are compressed. Every choice is
+/// lossless, so the pixels read back are the ones written; they trade file
+/// size against the time spent writing. The 15 channels of a 480×360
+/// CBbunny render with its layers: ZIP 2.8 MB, PIZ 3.9 MB, RLE 8.1 MB,
+/// none 11.1 MB; ZIP costs the most CPU time (BENCHMARKS.md, "EXR
+/// compression").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ExrCompression {
+    /// No compression: the fastest to write, the largest file.
+    None,
+    /// Run-length encoding: fast, little gain on noisy renders.
+    Rle,
+    /// Deflate in blocks of 16 scanlines: small files, slow to write.
+    #[default]
+    Zip,
+    /// Wavelet-based PIZ: small files for noisy images, faster than ZIP.
+    Piz,
+}
+
+impl ExrCompression {
+    /// The `exr` crate's encoding: this compression over scanlines.
+    fn encoding(self) -> Encoding {
+        let compression = match self {
+            ExrCompression::None => Compression::Uncompressed,
+            ExrCompression::Rle => Compression::RLE,
+            ExrCompression::Zip => Compression::ZIP16,
+            ExrCompression::Piz => Compression::PIZ,
+        };
+        Encoding {
+            compression,
+            blocks: Blocks::ScanLines,
+            line_order: LineOrder::Increasing,
+        }
+    }
+}
 
 /// The data of an extra layer: three colour channels or one scalar.
 #[derive(Clone, Debug, PartialEq)]
@@ -182,6 +219,18 @@ fn rgb_channels(prefix: &str, image: &RgbImage) -> Vec<(String, Vec<f32>)> {
 /// image, [`ImageError::InvalidArgument`] for non-ASCII or duplicate channel
 /// names, and the errors of [`atomic_write`].
 pub fn write_exr(path: impl AsRef<Path>, layers: &ExrLayers) -> Result<(), ImageError> {
+    write_exr_compressed(path, layers, ExrCompression::default())
+}
+
+/// [`write_exr`] with the given compression.
+///
+/// # Errors
+/// As [`write_exr`].
+pub fn write_exr_compressed(
+    path: impl AsRef<Path>,
+    layers: &ExrLayers,
+    compression: ExrCompression,
+) -> Result<(), ImageError> {
     let (width, height) = layers.beauty.size();
     let mut channels = SmallVec::new();
     for (name, values) in layers.channels()? {
@@ -198,7 +247,7 @@ pub fn write_exr(path: impl AsRef<Path>, layers: &ExrLayers) -> Result<(), Image
     let layer = Layer::new(
         Vec2(width, height),
         attributes,
-        Encoding::SMALL_LOSSLESS,
+        compression.encoding(),
         AnyChannels::sort(channels),
     );
     let image = Image::from_layer(layer);

@@ -73,6 +73,48 @@ fn round_trip_is_bit_exact() {
 }
 
 #[test]
+fn every_compression_round_trips_bit_exact() {
+    let dir = TempDir::new("exr-compression");
+    let layers = full_layers();
+    for compression in [
+        ExrCompression::None,
+        ExrCompression::Rle,
+        ExrCompression::Zip,
+        ExrCompression::Piz,
+    ] {
+        let path = dir.path().join(format!("{compression:?}.exr"));
+        write_exr_compressed(&path, &layers, compression).unwrap();
+        let back = read_exr_layers(&path).unwrap();
+        assert_eq!(bits(&back.beauty), bits(&layers.beauty), "{compression:?}");
+        assert_eq!(
+            bits(back.normal.as_ref().unwrap()),
+            bits(layers.normal.as_ref().unwrap()),
+            "{compression:?}"
+        );
+        assert_eq!(back.sample_count, layers.sample_count, "{compression:?}");
+        // The file says which compression it holds.
+        let meta = exr::meta::MetaData::read_from_file(&path, false).unwrap();
+        let expected = compression.encoding().compression;
+        assert_eq!(meta.headers[0].compression, expected, "{compression:?}");
+    }
+    // A flat image compresses: ZIP well below the raw size.
+    let flat = ExrLayers::beauty(RgbImage::from_fn(64, 64, |_, _| [0.5, 0.25, 1.0]).unwrap());
+    let (raw, zip) = (
+        dir.path().join("flat-raw.exr"),
+        dir.path().join("flat-zip.exr"),
+    );
+    write_exr_compressed(&raw, &flat, ExrCompression::None).unwrap();
+    write_exr_compressed(&zip, &flat, ExrCompression::Zip).unwrap();
+    let size = |p: &std::path::Path| std::fs::metadata(p).unwrap().len();
+    assert!(
+        size(&zip) * 10 < size(&raw),
+        "{} vs {}",
+        size(&zip),
+        size(&raw)
+    );
+}
+
+#[test]
 fn channel_names_follow_the_documented_convention() {
     let dir = TempDir::new("exr-names");
     let path = dir.path().join("names.exr");

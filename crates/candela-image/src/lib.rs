@@ -26,7 +26,10 @@ pub use atomic::{atomic_write, check_writable};
 pub use buffer::{GrayImage, RgbImage};
 pub use colormap::{rate_colormap, rate_image};
 pub use error::{BoxError, ImageError};
-pub use exr_io::{read_exr, read_exr_layers, write_exr, ExrLayers, LayerData, VARIANCE_LAYER};
+pub use exr_io::{
+    read_exr, read_exr_layers, write_exr, write_exr_compressed, ExrCompression, ExrLayers,
+    LayerData, VARIANCE_LAYER,
+};
 pub use heat::{finite_percentile, heat_colormap, heat_image};
 pub use merge::merge_renders;
 pub use png_io::{read_png, read_png_stored, write_png, write_png_display, StoredPng};

@@ -12,8 +12,8 @@
 
 use super::{CostMeasure, Film};
 use candela_image::{
-    rate_image, write_exr, write_png, write_png_display, ExrLayers, ImageError, LayerData,
-    RenderInfo, SppSpread, ToneMap, VARIANCE_LAYER,
+    rate_image, write_exr_compressed, write_png, write_png_display, ExrCompression, ExrLayers,
+    ImageError, LayerData, RenderInfo, SppSpread, ToneMap, VARIANCE_LAYER,
 };
 use std::path::{Path, PathBuf};
 
@@ -65,6 +65,8 @@ pub struct OutputOptions {
     /// Also write `<stem>_rate.png`, the CS184 sample-rate image, with this
     /// sample count shown as red (adaptive sampling).
     pub rate_image: Option<u32>,
+    /// EXR: how the scanlines are compressed (`OutputSettings::exr_compression`).
+    pub exr_compression: ExrCompression,
 }
 
 /// Why a film could not be written.
@@ -139,7 +141,7 @@ pub fn write_film(
                 info,
                 ..ExrLayers::beauty(film.resolve())
             };
-            write_exr(path, &layers)
+            write_exr_compressed(path, &layers, opts.exr_compression)
         }
     }
     .map_err(failed(path))?;

@@ -31,7 +31,7 @@ mod tests;
 pub use help::{flags, help, SettingFlag};
 pub use image::{ImageSettings, BUILT_IN_SKY, CELL_HELP};
 pub use integrator::{Estimator, IntegratorSettings, ROULETTE_FROM, ROULETTE_THRESHOLD};
-pub use output::{OutputSettings, Tone};
+pub use output::{ExrCompressionSetting, OutputSettings, Tone};
 pub use run::{Bvh, RunSettings, DEFAULT_CHECKPOINT_EVERY, DEFAULT_MEMORY_LIMIT_GIB, DEFAULT_TILE};
 pub use sampling::{SamplingSettings, ADAPTIVE_HELP, DEFAULT_SPP};
 

@@ -1,7 +1,7 @@
 //! How the film becomes a displayable picture.
 
 use super::{check, SettingsError};
-use candela_image::{ToneCurve, ToneMap};
+use candela_image::{ExrCompression, ToneCurve, ToneMap};
 use serde::{Deserialize, Serialize};
 
 /// PNG tone curves (`--tone`).
@@ -16,6 +16,22 @@ pub enum Tone {
     Cs184,
     /// ACES filmic (Narkowicz's fit), then sRGB: rolls off highlights.
     Filmic,
+}
+
+/// EXR compression (`--exr-compression`); all lossless.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+pub enum ExrCompressionSetting {
+    /// None: the fastest to write, the largest file.
+    None,
+    /// Run-length encoding: fast, little smaller on noisy renders.
+    Rle,
+    /// Deflate, 16 scanlines per block: small, slowest to write.
+    #[default]
+    Zip,
+    /// PIZ (wavelets): small for noisy images, faster than ZIP.
+    Piz,
 }
 
 /// The output settings.
@@ -42,6 +58,11 @@ pub struct OutputSettings {
         value_parser = clap::builder::BoolishValueParser::new(),
         default_value_t = OutputSettings::default().denoise))]
     pub denoise: bool,
+
+    /// How EXR files are compressed (lossless in every case); `none` writes
+    /// fastest, `zip` smallest.
+    #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = OutputSettings::default().exr_compression))]
+    pub exr_compression: ExrCompressionSetting,
 }
 
 impl OutputSettings {
@@ -54,6 +75,16 @@ impl OutputSettings {
                 Tone::Cs184 => ToneCurve::Cs184,
                 Tone::Filmic => ToneCurve::Filmic,
             },
+        }
+    }
+
+    /// The EXR writer's compression.
+    pub fn exr_compression(&self) -> ExrCompression {
+        match self.exr_compression {
+            ExrCompressionSetting::None => ExrCompression::None,
+            ExrCompressionSetting::Rle => ExrCompression::Rle,
+            ExrCompressionSetting::Zip => ExrCompression::Zip,
+            ExrCompressionSetting::Piz => ExrCompression::Piz,
         }
     }
 

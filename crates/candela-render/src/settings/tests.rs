@@ -31,6 +31,7 @@ fn every_group_is_flat_in_json() {
         "spp": 64, "max_depth": 3, "width": 320, "height": 240, "exposure": -1.5,
         "threads": 2, "integrator": "direct", "lighting": "hemisphere",
         "camera": "file", "bvh": "median", "tone": "filmic", "sampler": "independent",
+        "exr_compression": "piz",
         "cell": [10, 20, 30, 40], "adaptive": [32, 0.1]
     })))
     .unwrap();
@@ -51,6 +52,10 @@ fn every_group_is_flat_in_json() {
     assert_eq!(
         (s.run.threads, s.run.bvh, s.output.tone),
         (2, Bvh::Median, Tone::Filmic)
+    );
+    assert_eq!(
+        s.output.exr_compression(),
+        candela_image::ExrCompression::Piz
     );
     // The JSON of the settings reads back as the same settings.
     assert_eq!(Settings::from_json(&s.to_json()).unwrap(), s);

@@ -84,7 +84,7 @@ def main(argv=None) -> int:
     except (ValueError, candela.LoadError) as e:
         print(f"candela: error: {e}", file=sys.stderr)
         return REFUSED
-    output = {k: settings[k] for k in ("exposure", "tone", "denoise") if k in settings}
+    output = {k: settings[k] for k in ("exposure", "tone", "denoise", "exr_compression") if k in settings}
     client, cluster = _client(a.dask)
     try:
         done = [0]
