@@ -251,7 +251,7 @@ def panel(id_, x, facing_camera, bsdf, flip=False):
     fl = '\n        <boolean name="flip_normals" value="true"/>' if flip else ""
     return f"""    <shape type="rectangle" id="{id_}">
         <transform name="to_world">
-            <scale x="0.3" y="0.4"/>{rot}
+            <scale x="0.2" y="0.4"/>{rot}
             <translate x="{x}" y="-0.5" z="0"/>
         </transform>{fl}
 {ind(bsdf)}
@@ -262,7 +262,7 @@ def panel(id_, x, facing_camera, bsdf, flip=False):
 def panel_rect(x):
     px, py = project((x, -0.5, 0))
     s = (W / 2) / math.tan(math.radians(FOV_X / 2)) / CAM_Z
-    return [int(px - 0.2 * s), int(py - 0.25 * s), int(px + 0.2 * s), int(py + 0.25 * s)]
+    return [int(px - 0.13 * s), int(py - 0.25 * s), int(px + 0.13 * s), int(py + 0.25 * s)]
 
 
 ONE = '<bsdf type="diffuse">\n    <rgb name="reflectance" value="0.2, 0.5, 0.8"/>\n</bsdf>'
@@ -330,7 +330,7 @@ def write_textures():
 def textured_panel(id_, x, bsdf, y=-0.35):
     return f"""    <shape type="rectangle" id="{id_}">
         <transform name="to_world">
-            <scale x="0.3" y="0.4"/>
+            <scale x="0.2" y="0.4"/>
             <translate x="{x}" y="{y}" z="0"/>
         </transform>
 {ind(bsdf)}
@@ -341,7 +341,7 @@ def textured_panel(id_, x, bsdf, y=-0.35):
 def tpanel_rect(x, y=-0.35):
     px, py = project((x, y, 0))
     s = (W / 2) / math.tan(math.radians(FOV_X / 2)) / CAM_Z
-    return [int(px - 0.2 * s), int(py - 0.25 * s), int(px + 0.2 * s), int(py + 0.25 * s)]
+    return [int(px - 0.13 * s), int(py - 0.25 * s), int(px + 0.13 * s), int(py + 0.25 * s)]
 
 
 BITMAP = """<bsdf type="twosided"><bsdf type="diffuse">
