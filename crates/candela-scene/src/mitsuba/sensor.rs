@@ -27,12 +27,6 @@ use glam::{Mat4, Vec3};
 /// Candela's depth for Mitsuba's unlimited `max_depth = -1`.
 pub(crate) const UNLIMITED_DEPTH: u32 = 1024;
 
-/// Mitsuba's default clip distances. Candela's renderer does not clip
-/// camera rays (no format's clip planes are applied), so other values are
-/// reported: Mitsuba hides what lies nearer than near_clip.
-const DEFAULT_NEAR_CLIP: f32 = 0.01;
-const DEFAULT_FAR_CLIP: f32 = 10_000.0;
-
 /// Mitsuba's default film size.
 const DEFAULT_FILM: (u32, u32) = (768, 576);
 
@@ -121,23 +115,14 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
             "to_world is not invertible",
         ));
     }
-    let near = float(doc, node, "near_clip", DEFAULT_NEAR_CLIP)?;
-    let far = float(doc, node, "far_clip", DEFAULT_FAR_CLIP)?;
+    let near = float(doc, node, "near_clip", 0.01)?;
+    let far = float(doc, node, "far_clip", 10_000.0)?;
     if !(near > 0.0 && far > near) {
         return Err(doc.err(
             node,
             ErrorKind::DegenerateCamera,
             format!("clip range [{near}, {far}] is empty"),
         ));
-    }
-    if (near, far) != (DEFAULT_NEAR_CLIP, DEFAULT_FAR_CLIP) {
-        b.warn(
-            doc,
-            node,
-            format!(
-                "near_clip/far_clip [{near}, {far}] are not applied (camera rays are not clipped)"
-            ),
-        )?;
     }
     if b.scene.cameras.is_empty() {
         b.hints.file_camera = true;
