@@ -73,6 +73,18 @@ REGIONS = {
 }
 
 
+def scene_regions(scene):
+    """The regions of `scene`: the table above, or a regions.json beside the
+    scene (written by the scene folder's generator) keyed by the scene's stem."""
+    stem = Path(scene).stem
+    if stem in REGIONS:
+        return REGIONS[stem]
+    path = Path(scene).parent / "regions.json"
+    if path.is_file():
+        return {k: tuple(v) for k, v in json.loads(path.read_text()).get(stem, {}).items()}
+    return {}
+
+
 def defines(items):
     out = {}
     for item in items or []:
@@ -193,6 +205,9 @@ def render_candela(args, scene):
         out = Path(args.workdir) / f"mitsuba_reference.candela.{b}.exr"
         cmd = ["cargo", "run", "--release", "-q", "-p", "candela-cli", "--", str(scene),
                "-s", str(per), "--seed", str(args.seed + b), "-f", str(out), "-q"]
+        cmd += [a for k, v in defines_of(args).items() for a in ("-D", f"{k}={v}")]
+        if args.threads:
+            cmd += ["-t", str(args.threads)]
         subprocess.run(cmd, cwd=REPO, check=True)
         imgs.append(read_layers(out)[0])
         cmds.append(shlex.join(cmd))
@@ -200,6 +215,13 @@ def render_candela(args, scene):
     stack = np.stack(imgs)
     se = stack.std(axis=0, ddof=1) / math.sqrt(len(imgs))
     return stack.mean(axis=0), se, cmds[0] + f"  (x{args.batches}, seeds {args.seed}..)", time.time() - start
+
+
+def defines_of(args):
+    """The reference's own -D defines (from its sidecar), so that Candela
+    renders the same variant of the scene."""
+    meta = json.loads(Path(args.reference).with_suffix(".json").read_text())
+    return meta.get("defines", {})
 
 
 def compare(args):
@@ -219,8 +241,7 @@ def compare(args):
     print(f"candela:   {cmd}, {args.spp} spp in all ({secs:.0f} s)")
     print(f"mean relative {BLOCK}x{BLOCK}-block error: {100 * rel:.2f}% "
           f"(noise alone: {100 * floor:.2f}%), {n} block-channels, max |z| {zmax:.1f}")
-    stem = Path(meta["scene"]).stem
-    for name, rect in REGIONS.get(stem, {}).items():
+    for name, rect in scene_regions(REPO / meta["scene"]).items():
         e = pixel_errors(test, ref, rect)
         se = np.sqrt(
             (test_se[rect[1]:rect[3], rect[0]:rect[2]] ** 2).sum(axis=(0, 1))
@@ -255,6 +276,7 @@ def main():
     c.add_argument("--batches", type=int, default=16, help="Candela runs (seeds) the spp is split into")
     c.add_argument("--save", help="write Candela's mean and stderr as an EXR")
     c.add_argument("--workdir", default="/tmp")
+    c.add_argument("--threads", "-t", type=int, default=0, help="Candela's -t (0: its default)")
     c.add_argument("--png", help="write a side-by-side PNG (Mitsuba left)")
     args = p.parse_args()
     reference(args) if args.mode == "reference" else compare(args)

@@ -40,9 +40,14 @@ impl BsdfFlags {
         self.0 & other.0 != 0
     }
 
-    /// Whether a delta lobe is involved (light sampling and MIS must be skipped).
+    /// Whether every lobe is a delta: a specular sample, or a BSDF that
+    /// light sampling cannot help (and whose bounce MIS must not weight).
+    /// A BSDF with a delta lobe *and* a smooth one (smooth plastic: a
+    /// mirror coat over a diffuse base) is not specular: its smooth lobe
+    /// needs light samples, because the emitter its diffuse bounce finds is
+    /// MIS-weighted against them.
     pub fn is_specular(self) -> bool {
-        self.intersects(Self::SPECULAR)
+        self.intersects(Self::SPECULAR) && !self.is_non_specular()
     }
 
     /// Whether some lobe is non-delta, i.e. light sampling can help.
@@ -83,5 +88,14 @@ mod tests {
         assert!(glass.contains(BsdfFlags::REFLECTION | BsdfFlags::SPECULAR));
         assert!(!diffuse.contains(glass));
         assert!(!BsdfFlags::EMPTY.intersects(glass));
+    }
+
+    #[test]
+    fn a_delta_lobe_beside_a_smooth_one_is_not_specular() {
+        // Smooth plastic's flags: the path tracer samples lights at such a
+        // vertex only when this is false.
+        let plastic = BsdfFlags::REFLECTION | BsdfFlags::DIFFUSE | BsdfFlags::SPECULAR;
+        assert!(!plastic.is_specular() && plastic.is_non_specular());
+        assert!((BsdfFlags::REFLECTION | BsdfFlags::SPECULAR).is_specular());
     }
 }

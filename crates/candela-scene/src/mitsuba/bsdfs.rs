@@ -305,6 +305,13 @@ impl Builder {
 
     /// A `<texture>` element.
     pub(super) fn texture(&mut self, doc: &Doc, node: XNode) -> Result<Texture, LoadError> {
+        if let Some(t) = doc.prop(node, "to_uv")? {
+            self.warn(
+                doc,
+                t,
+                "a texture's to_uv is not supported (read at the surface's own uv)",
+            )?;
+        }
         match doc.plugin_type(node)?.as_str() {
             "bitmap" => {
                 let path = self.existing_file(doc, node)?;

@@ -9,7 +9,7 @@ use super::emitters::area_radiance;
 use super::transform::to_world;
 use super::values::{boolean, float, point};
 use super::{tessellate, Builder};
-use crate::desc::{InstanceDesc, MaterialDesc, SphereDesc};
+use crate::desc::{InstanceDesc, MaterialDesc, MeshDesc, SphereDesc};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat4, Vec3};
 
@@ -70,6 +70,9 @@ impl Builder {
                 ))
             }
         };
+        if kind != "obj" {
+            image_rows_from_the_top(&mut mesh);
+        }
         if boolean(doc, node, "flip_normals", false)? {
             tessellate::flip(&mut mesh);
         }
@@ -259,6 +262,18 @@ impl Builder {
     fn push_material(&mut self, m: MaterialDesc) -> usize {
         self.scene.materials.push(m);
         self.scene.materials.len() - 1
+    }
+}
+
+/// Mitsuba reads a texture at uv with v = 0 on the image's *top* row;
+/// Candela's v = 0 is the bottom row (the OBJ convention). Mitsuba's OBJ
+/// reader flips v to its own convention (so OBJ files need nothing), but
+/// its PLY reader and its built-in shapes (rectangle: uv (0, 0) at corner
+/// (-1, -1)) keep v as it is: their images would come out upside down
+/// unless v becomes 1 − v here.
+fn image_rows_from_the_top(mesh: &mut MeshDesc) {
+    for uv in &mut mesh.uvs {
+        uv.y = 1.0 - uv.y;
     }
 }
 

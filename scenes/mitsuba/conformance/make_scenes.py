@@ -1,0 +1,661 @@
+#!/usr/bin/env python3
+"""Writes the Mitsuba conformance scenes of this folder: small scenes (128x96,
+box filter) that each isolate a group of the Mitsuba loader's features, for
+`benches/mitsuba_reference.py` (Mitsuba 3 reference, then Candela against it).
+
+    /tmp/mitsuba-venv/bin/python scenes/mitsuba/conformance/make_scenes.py
+
+Writes every `*.xml`, the small generated images under `textures/` (with
+Mitsuba's own `mi.Bitmap`) and `regions.json`: per scene, pixel rectangles
+inside each object (from the camera's projection), which the comparison
+reports one by one.
+
+Most scenes are the Cornell box of ../cornell-materials.xml (same camera,
+walls and ceiling light) with four objects at the same four places; the
+emitter and sensor scenes are an open stage (floor and back wall) lit only by
+the light under test.
+"""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import mitsuba as mi
+
+mi.set_variant("scalar_rgb")
+
+HERE = Path(__file__).resolve().parent
+W, H = 128, 96
+CAM_Z, FOV_X = 3.6, 48.0
+
+# The four places of the Cornell-box scenes, in a row on the floor so that
+# none hides another: (centre, radius).
+SLOTS = [((x, -0.76, 0.0), 0.22) for x in (-0.72, -0.24, 0.24, 0.72)]
+
+
+def project(p):
+    """Pixel (x, y) of world point p for the default camera."""
+    s = (W / 2) / math.tan(math.radians(FOV_X / 2))
+    d = CAM_Z - p[2]
+    return W / 2 + s * p[0] / d, H / 2 - s * p[1] / d
+
+
+def rect(center, radius, frac=0.45):
+    """A pixel rectangle inside a sphere's image (half-width frac * r)."""
+    x, y = project(center)
+    r = (W / 2) / math.tan(math.radians(FOV_X / 2)) * radius / (CAM_Z - center[2]) * frac
+    return [int(round(x - r)), int(round(y - r)), int(round(x + r)), int(round(y + r))]
+
+
+def header(comment, fov_axis="x", fov=FOV_X, sensor="perspective", extra_sensor="",
+           lookat='origin="0, 0, 3.6" target="0, 0, 0" up="0, 1, 0"', max_depth=8):
+    return f"""<?xml version="1.0" encoding="utf-8"?>
+<!--
+  Conformance scene (written by make_scenes.py; edit that, not this).
+  {comment}
+-->
+<scene version="3.0.0">
+    <default name="spp" value="64"/>
+    <default name="max_depth" value="{max_depth}"/>
+    <default name="seed" value="0"/>
+
+    <integrator type="path">
+        <integer name="max_depth" value="$max_depth"/>
+    </integrator>
+
+    <sensor type="{sensor}">
+        <string name="fov_axis" value="{fov_axis}"/>
+        <float name="fov" value="{fov}"/>{extra_sensor}
+        <transform name="to_world">
+            <lookat {lookat}/>
+        </transform>
+        <sampler type="independent">
+            <integer name="sample_count" value="$spp"/>
+            <integer name="seed" value="$seed"/>
+        </sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="{W}"/>
+            <integer name="height" value="{H}"/>
+            <string name="pixel_format" value="rgb"/>
+            <rfilter type="box"/>
+        </film>
+    </sensor>
+"""
+
+
+def diffuse(id_, rgb, twosided=True):
+    inner = f"""<bsdf type="diffuse">
+            <rgb name="reflectance" value="{rgb}"/>
+        </bsdf>"""
+    if not twosided:
+        return f'    <bsdf type="diffuse" id="{id_}">\n        <rgb name="reflectance" value="{rgb}"/>\n    </bsdf>\n'
+    return f'    <bsdf type="twosided" id="{id_}">\n        {inner}\n    </bsdf>\n'
+
+
+def wall(id_, transform, ref):
+    return f"""    <shape type="rectangle" id="{id_}">
+        <transform name="to_world">
+            {transform}
+        </transform>
+        <ref id="{ref}"/>
+    </shape>
+"""
+
+
+CEILING_LIGHT = """    <shape type="rectangle" id="light">
+        <transform name="to_world">
+            <scale value="0.35"/>
+            <rotate x="1" angle="90"/>
+            <translate y="0.99"/>
+        </transform>
+        <bsdf type="diffuse">
+            <rgb name="reflectance" value="0, 0, 0"/>
+        </bsdf>
+        <emitter type="area">
+            <rgb name="radiance" value="12, 10, 7"/>
+        </emitter>
+    </shape>
+"""
+
+
+def cornell(light=True):
+    s = diffuse("white", "0.7, 0.7, 0.7") + diffuse("red", "0.63, 0.065, 0.05") \
+        + diffuse("green", "0.14, 0.45, 0.09")
+    if light:
+        s += CEILING_LIGHT
+    s += wall("floor", '<rotate x="1" angle="-90"/>\n            <translate y="-1"/>', "white")
+    s += wall("ceiling", '<rotate x="1" angle="90"/>\n            <translate y="1"/>', "white")
+    s += wall("back", '<translate z="-1"/>', "white")
+    s += wall("left", '<rotate y="1" angle="90"/>\n            <translate x="-1"/>', "red")
+    s += wall("right", '<rotate y="1" angle="-90"/>\n            <translate x="1"/>', "green")
+    return s
+
+
+def stage():
+    """An open stage: a floor and a back wall (both twosided white)."""
+    s = diffuse("white", "0.7, 0.7, 0.7")
+    s += wall("floor", '<scale value="3"/>\n            <rotate x="1" angle="-90"/>\n            <translate y="-1"/>', "white")
+    s += wall("back", '<scale value="3"/>\n            <translate z="-1"/>', "white")
+    return s
+
+
+def sphere(slot, bsdf, id_):
+    (x, y, z), r = SLOTS[slot]
+    return f"""    <shape type="sphere" id="{id_}">
+        <point name="center" x="{x}" y="{y}" z="{z}"/>
+        <float name="radius" value="{r}"/>
+{bsdf}
+    </shape>
+"""
+
+
+def slot_regions(names):
+    return {n: rect(*SLOTS[i]) for i, n in enumerate(names) if n}
+
+
+SCENES = {}
+REGIONS = {}
+
+
+def add(name, text, regions):
+    SCENES[name] = text + "</scene>\n"
+    REGIONS[name] = regions
+
+
+def ind(s, n=8):
+    return "\n".join(" " * n + line if line else line for line in s.strip("\n").splitlines())
+
+
+# --- BSDFs -----------------------------------------------------------------
+
+PLASTICS = [
+    ("plastic (smooth)", """<bsdf type="plastic">
+    <rgb name="diffuse_reflectance" value="0.7, 0.12, 0.08"/>
+</bsdf>"""),
+    ("roughplastic beckmann 0.2", """<bsdf type="roughplastic">
+    <string name="distribution" value="beckmann"/>
+    <float name="alpha" value="0.2"/>
+    <rgb name="diffuse_reflectance" value="0.2, 0.4, 0.7"/>
+</bsdf>"""),
+    ("roughplastic ggx 0.3", """<bsdf type="roughplastic">
+    <string name="distribution" value="ggx"/>
+    <float name="alpha" value="0.3"/>
+    <float name="int_ior" value="1.6"/>
+    <rgb name="diffuse_reflectance" value="0.2, 0.6, 0.2"/>
+</bsdf>"""),
+    ("thindielectric", """<bsdf type="thindielectric">
+    <float name="int_ior" value="1.5"/>
+</bsdf>"""),
+]
+
+CONDUCTORS = [
+    ("conductor Au", """<bsdf type="conductor">
+    <string name="material" value="Au"/>
+</bsdf>"""),
+    ("conductor eta/k", """<bsdf type="conductor">
+    <rgb name="eta" value="0.2, 0.9, 1.1"/>
+    <rgb name="k" value="3.9, 2.4, 2.2"/>
+</bsdf>"""),
+    ("roughconductor anisotropic Cu", """<bsdf type="roughconductor">
+    <string name="material" value="Cu"/>
+    <string name="distribution" value="ggx"/>
+    <float name="alpha_u" value="0.05"/>
+    <float name="alpha_v" value="0.4"/>
+</bsdf>"""),
+    ("roughconductor beckmann Ag", """<bsdf type="roughconductor">
+    <string name="material" value="Ag"/>
+    <string name="distribution" value="beckmann"/>
+    <float name="alpha" value="0.2"/>
+</bsdf>"""),
+]
+
+PRINCIPLED = [
+    ("principled dielectric r0.5", """<bsdf type="principled">
+    <rgb name="base_color" value="0.7, 0.2, 0.1"/>
+    <float name="roughness" value="0.5"/>
+</bsdf>"""),
+    ("principled metallic r0.3", """<bsdf type="principled">
+    <rgb name="base_color" value="0.9, 0.7, 0.3"/>
+    <float name="metallic" value="1.0"/>
+    <float name="roughness" value="0.3"/>
+</bsdf>"""),
+    ("principled specular 1 r0.2", """<bsdf type="principled">
+    <rgb name="base_color" value="0.1, 0.3, 0.7"/>
+    <float name="specular" value="1.0"/>
+    <float name="roughness" value="0.2"/>
+</bsdf>"""),
+    ("principled spec_trans 1", """<bsdf type="principled">
+    <rgb name="base_color" value="0.9, 0.9, 0.9"/>
+    <float name="spec_trans" value="1.0"/>
+    <float name="roughness" value="0.1"/>
+</bsdf>"""),
+]
+
+
+def bsdf_scene(name, comment, items):
+    text = header(comment) + cornell()
+    for i, (label, b) in enumerate(items):
+        text += sphere(i, ind(b), f"s{i}")
+    add(name, text, {**slot_regions([l for l, _ in items]), "back wall": [52, 14, 76, 38]})
+
+
+bsdf_scene("bsdf-plastic", "Plastic, rough plastic (beckmann, ggx) and a thin dielectric.", PLASTICS)
+bsdf_scene("bsdf-conductor", "Conductors: named (Au), eta/k, anisotropic rough (Cu), rough beckmann (Ag).", CONDUCTORS)
+bsdf_scene("bsdf-principled", "The principled BSDF with four parameter sets.", PRINCIPLED)
+
+# One-sided BSDFs seen from the back, twosided, flip_normals: rectangles
+# standing in the box facing away from / toward the camera.
+def panel(id_, x, facing_camera, bsdf, flip=False):
+    rot = "" if facing_camera else '\n            <rotate y="1" angle="180"/>'
+    fl = '\n        <boolean name="flip_normals" value="true"/>' if flip else ""
+    return f"""    <shape type="rectangle" id="{id_}">
+        <transform name="to_world">
+            <scale x="0.2" y="0.4"/>{rot}
+            <translate x="{x}" y="-0.5" z="0"/>
+        </transform>{fl}
+{ind(bsdf)}
+    </shape>
+"""
+
+
+def panel_rect(x):
+    px, py = project((x, -0.5, 0))
+    s = (W / 2) / math.tan(math.radians(FOV_X / 2)) / CAM_Z
+    return [int(px - 0.13 * s), int(py - 0.25 * s), int(px + 0.13 * s), int(py + 0.25 * s)]
+
+
+ONE = '<bsdf type="diffuse">\n    <rgb name="reflectance" value="0.2, 0.5, 0.8"/>\n</bsdf>'
+TWO = '<bsdf type="twosided">\n    ' + ONE.replace("\n", "\n    ") + "\n</bsdf>"
+text = header("One-sided diffuse seen from the front and back, twosided, flip_normals.") + cornell()
+xs = [-0.7, -0.23, 0.23, 0.7]
+text += panel("front_onesided", xs[0], True, ONE)
+text += panel("back_onesided", xs[1], False, ONE)
+text += panel("back_twosided", xs[2], False, TWO)
+# (A different colour: Mitsuba 3.9 fails to merge a flipped mesh with
+# unflipped ones of an identical BSDF.)
+text += panel("flipped_onesided", xs[3], True, ONE.replace("0.2, 0.5, 0.8", "0.8, 0.5, 0.2"), flip=True)
+add("bsdf-sides", text, {
+    "one-sided, front": panel_rect(xs[0]),
+    "one-sided, back": panel_rect(xs[1]),
+    "twosided, back": panel_rect(xs[2]),
+    "one-sided, flip_normals": panel_rect(xs[3]),
+})
+
+# --- Textures ---------------------------------------------------------------
+
+
+def write_textures():
+    t = HERE / "textures"
+    t.mkdir(exist_ok=True)
+    # An sRGB colour image: four coloured quadrants and a gradient.
+    n = 64
+    y, x = np.mgrid[0:n, 0:n] / (n - 1)
+    img = np.zeros((n, n, 3), np.float32)
+    img[..., 0] = np.where(x < 0.5, 0.9, 0.2)
+    img[..., 1] = np.where(y < 0.5, 0.8, 0.15)
+    img[..., 2] = 0.2 + 0.6 * x * y
+    mi.Bitmap(img, mi.Bitmap.PixelFormat.RGB).convert(
+        mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, True).write(str(t / "quadrants.png"))
+    # A tangent-space normal map: a bumpy sine pattern (raw, linear).
+    u = 2 * math.pi * 3 * x
+    v = 2 * math.pi * 3 * y
+    nx, ny = 0.5 * np.cos(u), 0.5 * np.cos(v)
+    nz = np.ones_like(nx)
+    ln = np.sqrt(nx * nx + ny * ny + nz * nz)
+    nm = np.stack([nx / ln, ny / ln, nz / ln], -1) * 0.5 + 0.5
+    mi.Bitmap(nm.astype(np.float32), mi.Bitmap.PixelFormat.RGB).convert(
+        mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, False).write(str(t / "normals.png"))
+    # A height field (grey, linear) for bumpmap.
+    h = (0.5 + 0.5 * np.sin(u) * np.sin(v)).astype(np.float32)[..., None]
+    mi.Bitmap(h, mi.Bitmap.PixelFormat.Y).convert(
+        mi.Bitmap.PixelFormat.Y, mi.Struct.Type.UInt8, False).write(str(t / "height.png"))
+    # An opacity mask: a disc (grey, linear).
+    m = (((x - 0.5) ** 2 + (y - 0.5) ** 2) < 0.16).astype(np.float32)[..., None]
+    mi.Bitmap(m, mi.Bitmap.PixelFormat.Y).convert(
+        mi.Bitmap.PixelFormat.Y, mi.Struct.Type.UInt8, False).write(str(t / "disc.png"))
+    # An environment map (equirectangular, 64x32): coloured by direction so
+    # that a wrong orientation or seam shows.
+    ew, eh = 64, 32
+    phi = (np.arange(ew) + 0.5) / ew
+    theta = (np.arange(eh) + 0.5) / eh
+    pp, tt = np.meshgrid(phi, theta)
+    env = np.zeros((eh, ew, 3), np.float32)
+    env[..., 0] = 0.2 + 1.5 * (pp < 0.25)
+    env[..., 1] = 0.2 + 1.0 * ((pp > 0.5) & (pp < 0.75))
+    env[..., 2] = 0.2 + 2.0 * (tt < 0.3)
+    mi.Bitmap(env, mi.Bitmap.PixelFormat.RGB).write(str(t / "env.exr"))
+
+
+def textured_panel(id_, x, bsdf, y=-0.35):
+    return f"""    <shape type="rectangle" id="{id_}">
+        <transform name="to_world">
+            <scale x="0.2" y="0.4"/>
+            <translate x="{x}" y="{y}" z="0"/>
+        </transform>
+{ind(bsdf)}
+    </shape>
+"""
+
+
+def tpanel_rect(x, y=-0.35):
+    px, py = project((x, y, 0))
+    s = (W / 2) / math.tan(math.radians(FOV_X / 2)) / CAM_Z
+    return [int(px - 0.13 * s), int(py - 0.25 * s), int(px + 0.13 * s), int(py + 0.25 * s)]
+
+
+BITMAP = """<bsdf type="twosided"><bsdf type="diffuse">
+    <texture type="bitmap" name="reflectance">
+        <string name="filename" value="textures/quadrants.png"/>
+        <string name="filter_type" value="nearest"/>
+    </texture>
+</bsdf></bsdf>"""
+BITMAP_UV = """<bsdf type="twosided"><bsdf type="diffuse">
+    <texture type="bitmap" name="reflectance">
+        <string name="filename" value="textures/quadrants.png"/>
+        <string name="filter_type" value="nearest"/>
+        <transform name="to_uv">
+            <scale x="2" y="3"/>
+        </transform>
+    </texture>
+</bsdf></bsdf>"""
+CHECKER = """<bsdf type="twosided"><bsdf type="diffuse">
+    <texture type="checkerboard" name="reflectance">
+        <rgb name="color0" value="0.8, 0.1, 0.1"/>
+        <rgb name="color1" value="0.1, 0.1, 0.8"/>
+    </texture>
+</bsdf></bsdf>"""
+CHECKER_UV = """<bsdf type="twosided"><bsdf type="diffuse">
+    <texture type="checkerboard" name="reflectance">
+        <rgb name="color0" value="0.8, 0.8, 0.1"/>
+        <rgb name="color1" value="0.1, 0.6, 0.1"/>
+        <transform name="to_uv">
+            <scale x="4" y="2"/>
+        </transform>
+    </texture>
+</bsdf></bsdf>"""
+text = header("Diffuse with a bitmap and a checkerboard, each plain and with to_uv.") + cornell()
+xs = [-0.7, -0.23, 0.23, 0.7]
+for i, b in enumerate([BITMAP, BITMAP_UV, CHECKER, CHECKER_UV]):
+    text += textured_panel(f"t{i}", xs[i], b)
+add("tex-diffuse", text, {
+    "bitmap": tpanel_rect(xs[0]), "bitmap to_uv": tpanel_rect(xs[1]),
+    "checkerboard": tpanel_rect(xs[2]), "checkerboard to_uv": tpanel_rect(xs[3]),
+})
+
+NORMALMAP = """<bsdf type="normalmap">
+    <texture type="bitmap" name="normalmap">
+        <string name="filename" value="textures/normals.png"/>
+        <boolean name="raw" value="true"/>
+    </texture>
+    <bsdf type="roughplastic">
+        <float name="alpha" value="0.1"/>
+        <rgb name="diffuse_reflectance" value="0.6, 0.6, 0.6"/>
+    </bsdf>
+</bsdf>"""
+BUMPMAP = """<bsdf type="bumpmap">
+    <texture type="bitmap">
+        <string name="filename" value="textures/height.png"/>
+        <boolean name="raw" value="true"/>
+    </texture>
+    <float name="scale" value="0.5"/>
+    <bsdf type="roughplastic">
+        <float name="alpha" value="0.1"/>
+        <rgb name="diffuse_reflectance" value="0.6, 0.6, 0.6"/>
+    </bsdf>
+</bsdf>"""
+MASK = """<bsdf type="mask">
+    <texture type="bitmap" name="opacity">
+        <string name="filename" value="textures/disc.png"/>
+        <boolean name="raw" value="true"/>
+    </texture>
+    <bsdf type="diffuse">
+        <rgb name="reflectance" value="0.8, 0.5, 0.1"/>
+    </bsdf>
+</bsdf>"""
+MASK_CONST = """<bsdf type="mask">
+    <float name="opacity" value="0.5"/>
+    <bsdf type="diffuse">
+        <rgb name="reflectance" value="0.8, 0.5, 0.1"/>
+    </bsdf>
+</bsdf>"""
+text = header("normalmap, bumpmap, mask (bitmap and constant opacity).") + cornell()
+for i, b in enumerate([NORMALMAP, BUMPMAP, MASK, MASK_CONST]):
+    text += textured_panel(f"t{i}", xs[i], b)
+add("tex-maps", text, {
+    "normalmap": tpanel_rect(xs[0]), "bumpmap": tpanel_rect(xs[1]),
+    "mask bitmap": tpanel_rect(xs[2]), "mask 0.5": tpanel_rect(xs[3]),
+})
+
+# --- Shapes -----------------------------------------------------------------
+
+BLUE = '<bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.4, 0.8"/></bsdf></bsdf>'
+ORANGE = '<bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.4, 0.1"/></bsdf></bsdf>'
+text = header("Sphere (centre+radius, to_world scale), disk, cube, shapegroup + instance.") + cornell()
+text += f"""    <shape type="sphere" id="sphere_scaled">
+        <float name="radius" value="0.5"/>
+        <transform name="to_world">
+            <scale value="0.44"/>
+            <translate x="{SLOTS[0][0][0]}" y="{SLOTS[0][0][1]}" z="{SLOTS[0][0][2]}"/>
+        </transform>
+        {BLUE}
+    </shape>
+    <shape type="disk" id="disk">
+        <transform name="to_world">
+            <scale value="0.2"/>
+            <rotate x="1" angle="-20"/>
+            <translate x="{SLOTS[1][0][0]}" y="-0.7" z="{SLOTS[1][0][2]}"/>
+        </transform>
+        {ORANGE}
+    </shape>
+    <shape type="cube" id="cube">
+        <transform name="to_world">
+            <scale value="0.15"/>
+            <rotate y="1" angle="30"/>
+            <rotate x="1" angle="20"/>
+            <translate x="{SLOTS[2][0][0]}" y="-0.8" z="{SLOTS[2][0][2]}"/>
+        </transform>
+        {ORANGE}
+    </shape>
+    <shape type="shapegroup" id="group">
+        <shape type="sphere">
+            <float name="radius" value="0.5"/>
+            {BLUE}
+        </shape>
+        <shape type="cube">
+            <transform name="to_world">
+                <scale value="0.3"/>
+                <translate y="0.6"/>
+            </transform>
+            {ORANGE}
+        </shape>
+    </shape>
+    <shape type="instance">
+        <ref id="group"/>
+        <transform name="to_world">
+            <scale value="0.3"/>
+            <rotate z="1" angle="-30"/>
+            <translate x="{SLOTS[3][0][0]}" y="-0.82" z="{SLOTS[3][0][2]}"/>
+        </transform>
+    </shape>
+    <shape type="instance">
+        <ref id="group"/>
+        <transform name="to_world">
+            <scale value="0.25"/>
+            <translate x="0" y="0.1" z="-0.6"/>
+        </transform>
+    </shape>
+"""
+add("shapes", text, {
+    "sphere to_world": rect(SLOTS[0][0], 0.22),
+    "disk": rect((SLOTS[1][0][0], -0.7, SLOTS[1][0][2]), 0.18),
+    "cube": rect((SLOTS[2][0][0], -0.8, SLOTS[2][0][2]), 0.15),
+    "instance": rect((SLOTS[3][0][0], -0.82, SLOTS[3][0][2]), 0.13),
+    "back wall": [52, 14, 76, 38],
+})
+
+
+def write_ply_sphere(path, n_theta=12, n_phi=24):
+    """A coarse UV sphere as a binary PLY with per-vertex normals."""
+    verts, faces = [], []
+    for i in range(n_theta + 1):
+        t = math.pi * i / n_theta
+        for j in range(n_phi):
+            p = 2 * math.pi * j / n_phi
+            v = (math.sin(t) * math.cos(p), math.cos(t), math.sin(t) * math.sin(p))
+            verts.append(v + v)
+    for i in range(n_theta):
+        for j in range(n_phi):
+            a, b = i * n_phi + j, i * n_phi + (j + 1) % n_phi
+            c, d = a + n_phi, b + n_phi
+            if i > 0:
+                faces.append((a, b, c))
+            if i < n_theta - 1:
+                faces.append((b, d, c))
+    head = (f"ply\nformat ascii 1.0\nelement vertex {len(verts)}\n"
+            "property float x\nproperty float y\nproperty float z\n"
+            "property float nx\nproperty float ny\nproperty float nz\n"
+            f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
+    body = "".join(" ".join(f"{c:.6f}" for c in v) + "\n" for v in verts)
+    body += "".join(f"3 {a} {b} {c}\n" for a, b, c in faces)
+    path.write_text(head + body)
+
+
+text = header("A coarse PLY sphere with its vertex normals and with face_normals.") + cornell()
+for i, fn in enumerate([False, True]):
+    (x, y, z), r = SLOTS[2 + i]
+    fnx = '\n        <boolean name="face_normals" value="true"/>' if fn else ""
+    text += f"""    <shape type="ply" id="ply{i}">
+        <string name="filename" value="textures/sphere.ply"/>{fnx}
+        <transform name="to_world">
+            <scale value="{r}"/>
+            <translate x="{x}" y="{y}" z="{z}"/>
+        </transform>
+        <bsdf type="roughplastic">
+            <float name="alpha" value="0.1"/>
+            <rgb name="diffuse_reflectance" value="0.3, 0.5, 0.7"/>
+        </bsdf>
+    </shape>
+"""
+add("shapes-normals", text, {"ply smooth normals": rect(*SLOTS[2]), "ply face_normals": rect(*SLOTS[3])})
+
+# --- Emitters ---------------------------------------------------------------
+
+GREY_SPHERES = "".join(
+    sphere(i, '        <bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.6, 0.6"/></bsdf>', f"s{i}")
+    for i in range(4))
+EMIT_REGIONS = {**slot_regions(["sphere 1", "sphere 2", "sphere 3", "sphere 4"]),
+                "floor front": [40, 84, 88, 94], "back wall": [40, 10, 88, 30]}
+
+
+def emitter_scene(name, comment, emitters, max_depth=8):
+    text = header(comment, max_depth=max_depth) + stage() + GREY_SPHERES + emitters
+    add(name, text, EMIT_REGIONS)
+
+
+emitter_scene("emit-point", "A point light (intensity), off-centre.", """    <emitter type="point">
+        <point name="position" x="-0.5" y="1.2" z="1.0"/>
+        <rgb name="intensity" value="3, 2.5, 2"/>
+    </emitter>
+""")
+emitter_scene("emit-spot-hard", "A spot light with beam_width = cutoff_angle (a hard edge).", """    <emitter type="spot">
+        <transform name="to_world">
+            <lookat origin="0.3, 1.5, 1.5" target="0, -1, -0.3"/>
+        </transform>
+        <rgb name="intensity" value="8, 7, 6"/>
+        <float name="cutoff_angle" value="25"/>
+        <float name="beam_width" value="25"/>
+    </emitter>
+""")
+emitter_scene("emit-spot-soft", "A spot light with Mitsuba's default fade (beam_width 0.75 cutoff).", """    <emitter type="spot">
+        <transform name="to_world">
+            <lookat origin="0.3, 1.5, 1.5" target="0, -1, -0.3"/>
+        </transform>
+        <rgb name="intensity" value="8, 7, 6"/>
+        <float name="cutoff_angle" value="30"/>
+    </emitter>
+""")
+emitter_scene("emit-directional", "A directional light (irradiance) from upper left.", """    <emitter type="directional">
+        <vector name="direction" x="0.5" y="-1" z="-0.4"/>
+        <rgb name="irradiance" value="2, 1.8, 1.5"/>
+    </emitter>
+""")
+emitter_scene("emit-constant", "A constant environment.", """    <emitter type="constant">
+        <rgb name="radiance" value="0.8, 0.9, 1.0"/>
+    </emitter>
+""")
+emitter_scene("emit-envmap", "An environment map (generated, 64x32) with scale 1.5; max_depth 2 (direct only).", """    <emitter type="envmap">
+        <string name="filename" value="textures/env.exr"/>
+        <float name="scale" value="1.5"/>
+    </emitter>
+""", max_depth=2)
+
+# The environment seen directly: no stage, a mirror ball and a diffuse ball.
+text = header("An environment map seen directly and in a mirror sphere (orientation).",
+              lookat='origin="0, 0.3, 3.6" target="0, 0, 0" up="0, 1, 0"')
+text += """    <emitter type="envmap">
+        <string name="filename" value="textures/env.exr"/>
+    </emitter>
+    <shape type="sphere" id="mirror">
+        <point name="center" x="-0.5" y="0" z="0"/>
+        <float name="radius" value="0.45"/>
+        <bsdf type="conductor"/>
+    </shape>
+    <shape type="sphere" id="diffuse">
+        <point name="center" x="0.5" y="0" z="0"/>
+        <float name="radius" value="0.45"/>
+        <bsdf type="diffuse"/>
+    </shape>
+"""
+add("emit-envmap-direct", text, {"left sky": [0, 0, 20, 30], "right sky": [108, 0, 128, 30],
+                                 "centre bottom sky": [54, 80, 74, 96]})
+
+emitter_scene("emit-area", "Area emitters on a sphere and on a rectangle (one-sided, facing down-forward).", """    <shape type="sphere" id="lamp_sphere">
+        <point name="center" x="-0.6" y="0.5" z="0"/>
+        <float name="radius" value="0.15"/>
+        <emitter type="area">
+            <rgb name="radiance" value="6, 5, 4"/>
+        </emitter>
+    </shape>
+    <shape type="rectangle" id="lamp_rect">
+        <transform name="to_world">
+            <scale x="0.3" y="0.15"/>
+            <rotate x="1" angle="120"/>
+            <translate x="0.6" y="0.6" z="0.2"/>
+        </transform>
+        <emitter type="area">
+            <rgb name="radiance" value="5, 6, 8"/>
+        </emitter>
+    </shape>
+""")
+
+# --- Sensors ----------------------------------------------------------------
+
+SENSOR_BODY = cornell()
+for i in range(4):
+    SENSOR_BODY += sphere(i, '        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf></bsdf>', f"s{i}")
+WHOLE = {"whole image": [0, 0, W, H]}
+for axis, fov in [("y", 38.0), ("diagonal", 58.0), ("smaller", 38.0), ("larger", 48.0)]:
+    add(f"sensor-fov-{axis}", header(f"fov_axis {axis}.", fov_axis=axis, fov=fov) + SENSOR_BODY, WHOLE)
+add("sensor-thinlens", header(
+    "A thin lens focused in front of the spheres.", sensor="thinlens",
+    extra_sensor='\n        <float name="aperture_radius" value="0.08"/>\n        <float name="focus_distance" value="2.8"/>')
+    + SENSOR_BODY, {**slot_regions(["sphere 1", "sphere 2", "sphere 3", "sphere 4"]), **WHOLE})
+add("sensor-up", header("lookat with a tilted up vector (the image turns).",
+                        lookat='origin="0.4, 0.3, 3.6" target="0, -0.2, 0" up="0.3, 1, 0"') + SENSOR_BODY, WHOLE)
+add("sensor-clip", header("near_clip 3.5 cuts the spheres' front caps away (twosided, so their inside shows).",
+                          extra_sensor='\n        <float name="near_clip" value="3.5"/>\n        <float name="far_clip" value="100"/>')
+    + SENSOR_BODY, WHOLE)
+
+
+def main():
+    write_textures()
+    write_ply_sphere(HERE / "textures" / "sphere.ply")
+    for name, text in SCENES.items():
+        (HERE / f"{name}.xml").write_text(text)
+    (HERE / "regions.json").write_text(json.dumps(REGIONS, indent=1) + "\n")
+    print(f"wrote {len(SCENES)} scenes to {HERE}")
+
+
+if __name__ == "__main__":
+    main()
