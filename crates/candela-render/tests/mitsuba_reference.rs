@@ -104,13 +104,26 @@ fn mean_relative_block_error(test: &RgbImage, reference: &RgbImage) -> f64 {
 /// Renders, compares, prints the figures, and returns the z-test summary
 /// and the mean relative block error.
 fn compare(name: &str, spp: u32, seed: u64, changes: serde_json::Value) -> (ZSummary, f64) {
-    let (ref_mean, ref_se) = reference(name);
-    let (mean, se) = candela(
+    compare_scene(
         &format!("scenes/mitsuba/{name}.xml"),
+        name,
         spp,
         seed,
-        changes.clone(),
-    );
+        changes,
+    )
+}
+
+/// [`compare`] for the scene file `scene` (from the repository's root) and
+/// the stored reference `name`.
+fn compare_scene(
+    scene: &str,
+    name: &str,
+    spp: u32,
+    seed: u64,
+    changes: serde_json::Value,
+) -> (ZSummary, f64) {
+    let (ref_mean, ref_se) = reference(name);
+    let (mean, se) = candela(scene, spp, seed, changes.clone());
     assert_eq!(mean.size(), ref_mean.size(), "film size");
     let a = BlockStats::from_pixel_errors(&mean, &se, BLOCK).unwrap();
     let b = BlockStats::from_pixel_errors(&ref_mean, &ref_se, BLOCK).unwrap();
@@ -182,13 +195,19 @@ fn candela_matches_mitsuba_on_the_coated_box_at_high_sample_counts() {
 
 #[test]
 fn candela_matches_mitsuba_on_smooth_plastic() {
-    // scenes/mitsuba/conformance/bsdf-plastic.xml: smooth plastic, rough
+    // benches/mitsuba_conformance/bsdf-plastic.xml: smooth plastic, rough
     // plastic (beckmann, ggx) and a thin dielectric in the Cornell box.
     // Smooth plastic has a delta lobe beside its diffuse one; when the path
     // tracer took the BSDF for specular and skipped its light samples, the
     // diffuse base lost the light-sampled half of its direct light: -44% to
     // -53% against Mitsuba in the sphere, the z-test failing by far.
-    let (summary, rel) = compare("conformance/bsdf-plastic", 256, 5, json!({}));
+    let (summary, rel) = compare_scene(
+        "benches/mitsuba_conformance/bsdf-plastic.xml",
+        "conformance/bsdf-plastic",
+        256,
+        5,
+        json!({}),
+    );
     assert!(summary.passed(), "{summary:?}");
     let (ref_mean, _) = reference("conformance/bsdf-plastic");
     assert!(ref_mean.pixels().iter().any(|p| p[1] > 5.0));

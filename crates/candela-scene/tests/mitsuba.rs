@@ -408,13 +408,13 @@ proptest! {
 #[test]
 fn texture_transforms_are_reported_not_dropped() {
     // Mitsuba reads a texture through its to_uv; Candela does not, so it
-    // is reported once (scenes/mitsuba/conformance/tex-diffuse.xml: -14%
+    // is reported once (benches/mitsuba_conformance/tex-diffuse.xml: -14%
     // in G against Mitsuba for a bitmap with to_uv).
     let dir = candela_testkit::TempDir::new("mitsuba-uv-transform");
     let path = dir.join("uv.xml");
     std::fs::write(
         dir.join("t.png"),
-        include_bytes!("../../../scenes/mitsuba/conformance/textures/quadrants.png"),
+        include_bytes!("../../../benches/mitsuba_conformance/textures/quadrants.png"),
     )
     .unwrap();
     let body = r#"<scene version="3.0.0">
@@ -435,7 +435,7 @@ fn built_in_shapes_and_ply_read_images_from_the_top_as_mitsuba_does() {
     // reads uv v = 0 on an image's top row; Candela's v = 0 is the bottom
     // row, so that corner must carry Candela uv (0, 1). Upside down, a
     // bitmap on a rectangle was +17% / -6.5% (G / B) against Mitsuba in
-    // scenes/mitsuba/conformance/tex-diffuse.xml. OBJ files are left alone
+    // benches/mitsuba_conformance/tex-diffuse.xml. OBJ files are left alone
     // (Mitsuba's OBJ reader flips v itself); PLY files are flipped.
     let dir = candela_testkit::TempDir::new("mitsuba-uv");
     let path = dir.join("uv.xml");

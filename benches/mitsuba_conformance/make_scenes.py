@@ -3,7 +3,7 @@
 box filter) that each isolate a group of the Mitsuba loader's features, for
 `benches/mitsuba_reference.py` (Mitsuba 3 reference, then Candela against it).
 
-    /tmp/mitsuba-venv/bin/python scenes/mitsuba/conformance/make_scenes.py
+    /tmp/mitsuba-venv/bin/python benches/mitsuba_conformance/make_scenes.py
 
 Writes every `*.xml`, the small generated images under `textures/` (with
 Mitsuba's own `mi.Bitmap`) and `regions.json`: per scene, pixel rectangles
