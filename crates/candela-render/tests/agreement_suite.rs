@@ -128,6 +128,22 @@ fn ci_cases() -> Vec<Case> {
             seed: 8,
         },
         Case {
+            name: "CBspheres_lambertian, gaussian pixel filter",
+            scene: || cs184_box_filtered("CBspheres_lambertian.dae", "gaussian"),
+            max_depth: 3,
+            spp: 8,
+            excluded: &[],
+            seed: 12,
+        },
+        Case {
+            name: "CBspheres_lambertian, catmull-rom pixel filter (negative lobes)",
+            scene: || cs184_box_filtered("CBspheres_lambertian.dae", "catmull-rom"),
+            max_depth: 2,
+            spp: 8,
+            excluded: &[],
+            seed: 13,
+        },
+        Case {
             name: "textured lamp through a cut-out screen",
             scene: textured_lamp_through_a_cut_out_screen,
             max_depth: 2,

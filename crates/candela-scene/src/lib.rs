@@ -27,7 +27,7 @@ mod text_file;
 
 pub use desc::*;
 pub use error::{ErrorKind, LoadError};
-pub use hints::RenderHints;
+pub use hints::{FilterHint, RenderHints};
 pub use referenced::referenced_files;
 pub use report::{Report, Warning};
 

@@ -5,7 +5,8 @@
 //! Malformed files are in `tests/malformed/` (`*-mitsuba-*.xml`).
 
 use candela_scene::{
-    load, BsdfDesc, EnvironmentDesc, LightKind, LoadOptions, Loaded, MicrofacetModel, Projection,
+    load, BsdfDesc, EnvironmentDesc, FilterHint, LightKind, LoadOptions, Loaded, MicrofacetModel,
+    Projection,
 };
 use glam::Vec3;
 use proptest::prelude::*;
@@ -68,6 +69,7 @@ fn the_mitsuba_cornell_box_loads() {
     assert_eq!(l.hints.resolution, Some((256, 256)));
     assert_eq!(l.hints.max_depth, Some(5)); // Mitsuba's 6 segments
     assert!(l.hints.file_camera);
+    assert_eq!(l.hints.filter, Some(FilterHint::Gaussian { stddev: 0.5 }));
     let Projection::Perspective { xfov_deg, yfov_deg } = s.cameras[0].projection else {
         panic!("{:?}", s.cameras[0].projection)
     };
@@ -482,4 +484,97 @@ fn built_in_shapes_and_ply_read_images_from_the_top_as_mitsuba_does() {
     assert!((ply - glam::Vec2::new(0.0, 0.1)).length() < 1e-6, "{ply}");
     let obj = uv_at(2, Vec3::new(0.0, 1.0, 0.0));
     assert!((obj - glam::Vec2::new(0.0, 0.9)).length() < 1e-6, "{obj}");
+}
+
+/// A scene whose sensor's film has `film_body` inside.
+fn with_film(dir: &candela_testkit::TempDir, name: &str, film_body: &str) -> PathBuf {
+    let path = dir.join(name);
+    let body = format!(
+        r#"<scene version="3.0.0">
+    <sensor type="perspective">
+        <film type="hdrfilm">
+            <integer name="width" value="8"/>
+            <integer name="height" value="6"/>
+            {film_body}
+        </film>
+    </sensor>
+    <shape type="cube"/>
+</scene>"#
+    );
+    std::fs::write(&path, body).unwrap();
+    path
+}
+
+#[test]
+fn the_films_reconstruction_filter_becomes_a_hint() {
+    let dir = candela_testkit::TempDir::new("mitsuba-rfilter");
+    let cases = [
+        ("", FilterHint::Gaussian { stddev: 0.5 }),
+        (r#"<rfilter type="box"/>"#, FilterHint::Box),
+        (
+            r#"<rfilter type="tent"/>"#,
+            FilterHint::Tent { radius: 1.0 },
+        ),
+        (
+            r#"<rfilter type="tent"><float name="radius" value="1.5"/></rfilter>"#,
+            FilterHint::Tent { radius: 1.5 },
+        ),
+        (
+            r#"<rfilter type="gaussian"><float name="stddev" value="0.25"/></rfilter>"#,
+            FilterHint::Gaussian { stddev: 0.25 },
+        ),
+        (
+            r#"<rfilter type="mitchell"><float name="B" value="0.5"/></rfilter>"#,
+            FilterHint::Mitchell {
+                b: 0.5,
+                c: 1.0 / 3.0,
+            },
+        ),
+        (r#"<rfilter type="catmullrom"/>"#, FilterHint::CatmullRom),
+        (
+            r#"<rfilter type="lanczos"><integer name="lobes" value="2"/></rfilter>"#,
+            FilterHint::Lanczos { lobes: 2 },
+        ),
+    ];
+    for (i, (film, want)) in cases.into_iter().enumerate() {
+        let path = with_film(&dir, &format!("f{i}.xml"), film);
+        let l = load(&path, &strict()).unwrap();
+        assert_eq!(l.hints.filter, Some(want), "{film}");
+        assert!(l.report.is_empty(), "{film}: {}", l.report);
+    }
+    // No <film> at all: Mitsuba's default film, hence its default filter.
+    let path = dir.join("nofilm.xml");
+    std::fs::write(
+        &path,
+        r#"<scene version="3.0.0"><sensor type="perspective"/><shape type="cube"/></scene>"#,
+    )
+    .unwrap();
+    let l = load(&path, &strict()).unwrap();
+    assert_eq!(l.hints.filter, Some(FilterHint::MITSUBA_DEFAULT));
+}
+
+#[test]
+fn an_unknown_filter_is_reported_once_and_falls_back_to_the_default() {
+    let dir = candela_testkit::TempDir::new("mitsuba-rfilter-unknown");
+    let path = dir.join("two.xml");
+    let sensor = r#"<sensor type="perspective"><film type="hdrfilm">
+            <rfilter type="bspline"/></film></sensor>"#;
+    let body = format!(r#"<scene version="3.0.0">{sensor}{sensor}<shape type="cube"/></scene>"#);
+    std::fs::write(&path, body).unwrap();
+    let l = load(&path, &LoadOptions::default()).unwrap();
+    assert_eq!(l.report.len(), 1, "{}", l.report);
+    assert_eq!(l.report.warnings[0].count, 2, "{}", l.report);
+    assert!(l.report.mentions("bspline"), "{}", l.report);
+    assert_eq!(l.hints.filter, Some(FilterHint::MITSUBA_DEFAULT));
+    let err = load(&path, &strict()).unwrap_err();
+    assert_eq!(err.kind, candela_scene::ErrorKind::Unsupported, "{err}");
+    // A bad parameter is an error at its element.
+    let bad = with_film(
+        &dir,
+        "bad.xml",
+        r#"<rfilter type="tent"><float name="radius" value="-1"/></rfilter>"#,
+    );
+    let err = load(&bad, &LoadOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("radius -1 must be > 0"), "{err}");
+    assert!(err.to_string().contains("rfilter"), "{err}");
 }

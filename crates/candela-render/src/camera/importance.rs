@@ -27,6 +27,14 @@
 //! traces `N = n·W·H` light paths, one per camera sample; in general each
 //! splat must be multiplied by `W·H·n / N`.
 //!
+//! With a wider reconstruction filter (`filter.rs`) a contribution at film
+//! point `x` belongs to every pixel `p` whose filter covers it, weighted by
+//! `f_n(x − c_p)` (normalised, integral 1: the box's weight is 1 in its
+//! pixel), and "the film" extends by the filter's margin
+//! ([`super::FilmFilter::margin`]) beyond the frame, where the edge pixels'
+//! camera samples also reach: `We` keeps its formula there (`A` stays the
+//! frame's area), so the same splat scale holds.
+//!
 //! The orthographic camera has no finite importance density on directions
 //! (its rays are parallel): light tracing and BDPT do not support it, and
 //! every function here returns `None` (or zero densities) for it.
@@ -103,10 +111,13 @@ impl Camera {
             (nx + 1.0) * 0.5 * self.width as f32,
             (1.0 - ny) * 0.5 * self.height as f32,
         );
-        let inside = film.x >= 0.0
-            && film.y >= 0.0
-            && film.x < self.width as f32
-            && film.y < self.height as f32;
+        // The frame and, for filters wider than a pixel, the margin whose
+        // film points still count for the edge pixels (`filter.rs`).
+        let m = self.filter.margin();
+        let inside = film.x >= -m
+            && film.y >= -m
+            && film.x < self.width as f32 + m
+            && film.y < self.height as f32 + m;
         inside.then_some((film, cos))
     }
 

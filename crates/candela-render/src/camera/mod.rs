@@ -11,12 +11,18 @@
 //! lens), which light tracing and bidirectional methods need, is in
 //! `importance.rs`: [`Camera::we`], [`Camera::pdf_we`], [`Camera::sample_wi`].
 
+mod filter;
+mod filter_table;
+#[cfg(test)]
+mod filter_tests;
 pub mod framing;
 mod importance;
 #[cfg(test)]
 mod importance_tests;
 mod view;
 
+pub use filter::{PixelFilter, FILTER_HELP, MAX_FILTER_RADIUS};
+pub use filter_table::FilmFilter;
 pub use importance::CameraWiSample;
 pub use view::CameraView;
 
@@ -51,6 +57,9 @@ pub struct Camera {
     /// orthographic camera (whose rays all run along `forward`); `None` for
     /// a perspective one.
     pub orthographic: Option<Vec2>,
+    /// The pixel reconstruction filter: where in the film a pixel's
+    /// samples come from (`filter.rs`); the one-pixel box by default.
+    pub filter: FilmFilter,
 }
 
 impl Camera {
@@ -80,6 +89,7 @@ impl Camera {
             lens_radius: 0.0,
             focal_distance: (target - eye).length(),
             orthographic: None,
+            filter: FilmFilter::default(),
         }
     }
 

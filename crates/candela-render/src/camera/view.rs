@@ -67,6 +67,7 @@ impl Camera {
         Ok(Camera {
             lens_radius: self.lens_radius,
             orthographic: self.orthographic,
+            filter: self.filter.clone(),
             ..placed
         })
     }

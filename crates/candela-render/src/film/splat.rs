@@ -31,9 +31,11 @@
 //!   ([`SplatLayer::light_paths`]): every light subpath is an independent
 //!   estimate of the whole image (Veach 1997 §10.3.4, pbrt-v4's
 //!   `RGBFilm::AddSplat` with the division by the sample count at the end).
-//!   Candela's film is the box-filtered mean per pixel, so the integrators
+//!   Candela's film is the filtered mean per pixel, so the integrators
 //!   splat importance-weighted values already multiplied by the pixel
-//!   count (see the camera's importance docs).
+//!   count (see the camera's importance docs), one splat per pixel the
+//!   reconstruction filter covers, weighted by it (`bdpt::splat_at`; one
+//!   splat for the default one-pixel box).
 //!
 //! A film without splats (every unidirectional render) keeps an empty
 //! buffer and costs nothing.

@@ -5,7 +5,7 @@
 //! ([`layer_names`], read when the film is made) and fills one value per
 //! layer for each sample ([`layered_pixel_sample`], called by the render
 //! loop only when there are layers, so a render without them runs the
-//! plain [`pixel_sample`]).
+//! plain [`super::pixel_sample`]).
 //!
 //! The path tracer's per-bounce layers (`--bounce-layers K`): layer `k`
 //! holds the light that reached the camera after exactly `k` bounces, with
@@ -22,7 +22,7 @@
 //! the (clamped) beauty.
 
 use super::record::{PathEnd, PathRecorder};
-use super::{clamp_scale, pixel_sample, IntegratorSettings, ThreadContext};
+use super::{clamp_scale, pixel_sample_unweighted, IntegratorSettings, ThreadContext};
 use crate::film::SampleValue;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -46,7 +46,7 @@ pub fn layer_names(settings: &IntegratorSettings) -> Vec<String> {
     }
 }
 
-/// [`pixel_sample`] that also fills `layers`, one value per name of
+/// [`super::pixel_sample`] that also fills `layers`, one value per name of
 /// [`layer_names`] (the settings were validated: the layers belong to the
 /// path tracer).
 pub fn layered_pixel_sample(
@@ -63,9 +63,15 @@ pub fn layered_pixel_sample(
         layers,
         unclamped: Vec3::ZERO,
     };
-    let sample = pixel_sample(settings, scene, pixel, index, sampler, ctx, &mut rec);
+    let (mut sample, weight) =
+        pixel_sample_unweighted(settings, scene, pixel, index, sampler, ctx, &mut rec);
     if let Some(scale) = clamp_scale(rec.unclamped, settings.clamp) {
         rec.layers.iter_mut().for_each(|l| *l *= scale);
+    }
+    // The reconstruction filter's weight, as `pixel_sample` gives the beauty.
+    if weight != 1.0 {
+        sample.radiance *= weight;
+        rec.layers.iter_mut().for_each(|l| *l *= weight);
     }
     sample
 }

@@ -51,7 +51,7 @@ pub fn light_trace(
     for s in first..=light.len() {
         if let Some(c) = connect::connect_to_camera(scene, &light, s, sampler, ctx) {
             if let Some(film) = c.film {
-                ctx.splats.push(splat_at(scene, film, c.l, 0));
+                splat_at(scene, film, c.l, 0, &mut ctx.splats);
             }
         }
     }

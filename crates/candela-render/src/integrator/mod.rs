@@ -95,8 +95,29 @@ impl FirstHitAov {
 /// Camera sample `index` of pixel `(x, y)`, exactly as the renderer takes
 /// it: the sampler is positioned at (pixel, index), the film and lens
 /// points are its first four dimensions, and the integrator draws the rest.
-/// Every step of the path goes to `rec` (`&mut ()` records nothing).
+/// Every step of the path goes to `rec` (`&mut ()` records nothing). The
+/// radiance carries the reconstruction filter's weight (`camera/filter.rs`;
+/// 1 for non-negative filters); the AOVs do not.
 pub fn pixel_sample<R: PathRecorder>(
+    settings: &IntegratorSettings,
+    scene: &Scene,
+    pixel: (u32, u32),
+    index: u32,
+    sampler: &mut Sampler,
+    ctx: &mut ThreadContext,
+    rec: &mut R,
+) -> SampleValue {
+    let (mut value, weight) =
+        pixel_sample_unweighted(settings, scene, pixel, index, sampler, ctx, rec);
+    if weight != 1.0 {
+        value.radiance *= weight;
+    }
+    value
+}
+
+/// [`pixel_sample`] before the filter weight, and the weight: what the
+/// per-layer sample needs, whose layers take the same weight.
+pub(crate) fn pixel_sample_unweighted<R: PathRecorder>(
     settings: &IntegratorSettings,
     scene: &Scene,
     (x, y): (u32, u32),
@@ -104,9 +125,17 @@ pub fn pixel_sample<R: PathRecorder>(
     sampler: &mut Sampler,
     ctx: &mut ThreadContext,
     rec: &mut R,
-) -> SampleValue {
+) -> (SampleValue, f32) {
     sampler.start_pixel_sample(x, y, index);
-    let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+    let filter = &scene.camera.filter;
+    // The one-pixel box keeps the old path: the pixel corner plus the
+    // sampler's 2-D number, bit for bit.
+    let (film, weight) = if filter.is_pixel_box() {
+        (Vec2::new(x as f32, y as f32) + sampler.next_2d(), 1.0)
+    } else {
+        let (offset, weight) = filter.sample(sampler.next_2d());
+        (Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset, weight)
+    };
     // The lens sample's dimensions are taken either way, so later draws
     // keep theirs; a pinhole skips drawing it.
     let lens = if scene.camera.uses_lens_sample() {
@@ -118,7 +147,8 @@ pub fn pixel_sample<R: PathRecorder>(
     let ray = scene.camera.generate_ray(film, lens);
     ctx.rays.camera += 1;
     rec.camera(film, &ray);
-    sample_recorded(settings, scene, &ray, sampler, ctx, rec)
+    let value = sample_recorded(settings, scene, &ray, sampler, ctx, rec);
+    (value, weight)
 }
 
 /// One camera sample: radiance (or the colour the integrator shows) along

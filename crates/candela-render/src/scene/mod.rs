@@ -17,7 +17,7 @@ pub use names::SceneNames;
 
 use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
-use crate::camera::{Camera, CameraView};
+use crate::camera::{Camera, CameraView, FilmFilter, PixelFilter};
 use crate::geometry::Ray;
 use crate::light::{EnvironmentMap, EnvironmentOptions, LightSet, SceneSphere};
 use crate::material::Material;
@@ -55,6 +55,8 @@ pub struct SceneOptions {
     /// An explicit placement replacing the framing's (`--eye`, `--look-at`,
     /// `--up`, `--fov`; the viewer's camera); the lens options still apply.
     pub view: Option<CameraView>,
+    /// The pixel reconstruction filter the camera samples from.
+    pub filter: PixelFilter,
 }
 
 impl Default for SceneOptions {
@@ -68,6 +70,7 @@ impl Default for SceneOptions {
             focal_distance: None,
             environment: None,
             view: None,
+            filter: PixelFilter::default(),
         }
     }
 }
@@ -208,6 +211,7 @@ impl Scene {
             camera = camera.with_view(view)?;
         }
         apply_lens(&mut camera, opts)?;
+        camera.filter = FilmFilter::new(opts.filter);
         Ok(camera)
     }
 

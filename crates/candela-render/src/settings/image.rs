@@ -3,7 +3,7 @@
 
 use super::{check, SettingsError};
 use crate::camera::framing::CameraMode;
-use crate::camera::{Camera, CameraView};
+use crate::camera::{Camera, CameraView, PixelFilter};
 use crate::film::PixelRect;
 use crate::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
 use glam::Vec3;
@@ -84,6 +84,16 @@ pub struct ImageSettings {
     /// the framing's).
     #[cfg_attr(feature = "cli", arg(long, value_name = "DEG"))]
     pub fov: Option<f32>,
+
+    /// Pixel reconstruction filter, NAME[:KEY=VALUE,...]: box (the
+    /// default, one uniform point per pixel), tent:radius=1,
+    /// gaussian:stddev=0.5 (radius 4 stddev unless given; Mitsuba's
+    /// default), mitchell:b=0.333,c=0.333, catmull-rom, lanczos:lobes=3,
+    /// blackman-harris:width=1.5. Samples are drawn from the filter
+    /// (weighted by its sign where it is negative) and splats of light
+    /// tracing and BDPT spread over its support; AOVs use the same points.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILTER", default_value_t = ImageSettings::default().filter))]
+    pub filter: PixelFilter,
 }
 
 /// `X,Y,Z` of `--eye`, `--look-at` and `--up`.
@@ -113,6 +123,7 @@ impl Default for ImageSettings {
             look_at: None,
             up: None,
             fov: None,
+            filter: PixelFilter::default(),
         }
     }
 }

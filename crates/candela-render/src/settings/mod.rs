@@ -35,10 +35,11 @@ pub use output::{ExrCompressionSetting, OutputSettings, Tone};
 pub use run::{Bvh, RunSettings, DEFAULT_CHECKPOINT_EVERY, DEFAULT_MEMORY_LIMIT_GIB, DEFAULT_TILE};
 pub use sampling::{SamplingSettings, ADAPTIVE_HELP, DEFAULT_SPP};
 
+use crate::camera::PixelFilter;
 use crate::film::PixelSums;
 use crate::render::RenderSettings;
 use crate::scene::SceneOptions;
-use candela_scene::RenderHints;
+use candela_scene::{FilterHint, RenderHints};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 use std::fmt::Display;
@@ -119,7 +120,25 @@ fn hints_json(h: &RenderHints) -> Map<String, Value> {
     if let Some(c) = h.clamp {
         m.insert("clamp".into(), c.into());
     }
+    if let Some(f) = h.filter {
+        m.insert("filter".into(), String::from(filter_of_hint(f)).into());
+    }
     m
+}
+
+/// The settings' filter for a scene's: Mitsuba's Gaussian has radius 4σ.
+fn filter_of_hint(hint: FilterHint) -> PixelFilter {
+    match hint {
+        FilterHint::Box => PixelFilter::default(),
+        FilterHint::Tent { radius } => PixelFilter::Tent { radius },
+        FilterHint::Gaussian { stddev } => PixelFilter::Gaussian {
+            stddev,
+            radius: 4.0 * stddev,
+        },
+        FilterHint::Mitchell { b, c } => PixelFilter::Mitchell { b, c },
+        FilterHint::CatmullRom => PixelFilter::CatmullRom,
+        FilterHint::Lanczos { lobes } => PixelFilter::Lanczos { lobes },
+    }
 }
 
 /// Memory a render of `width` × `height` pixels with `layers` extra layers
@@ -267,6 +286,7 @@ impl Settings {
             focal_distance: self.image.focal_distance,
             environment: None,
             view: self.image.view(),
+            filter: self.image.filter,
         }
     }
 

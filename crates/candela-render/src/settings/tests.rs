@@ -197,8 +197,15 @@ fn explicit_settings_beat_scene_hints_which_beat_defaults() {
         resolution: Some((320, 200)),
         file_camera: true,
         clamp: Some(3.0),
+        filter: Some(candela_scene::FilterHint::Tent { radius: 1.5 }),
     };
     let s = Settings::resolve(&hints, &changes(json!({"spp": 4, "camera": "cs184"}))).unwrap();
+    assert_eq!(
+        s.image.filter,
+        crate::camera::PixelFilter::Tent { radius: 1.5 }
+    );
+    let explicit = Settings::resolve(&hints, &changes(json!({"filter": "box"}))).unwrap();
+    assert_eq!(explicit.image.filter, crate::camera::PixelFilter::default());
     assert_eq!(s.sampling.spp, Some(4));
     assert_eq!(s.image.camera, crate::camera::framing::CameraMode::Cs184);
     assert_eq!(s.integrator.max_depth, 9);
@@ -341,4 +348,51 @@ fn an_explicit_camera_needs_both_points_and_a_valid_view() {
     assert_eq!(view.up, glam::Vec3::Y, "up defaults to +Y");
     assert_eq!(view.vfov_deg, Some(40.0));
     assert!(Settings::default().camera_options().view.is_none());
+}
+
+#[test]
+fn the_filter_is_one_string_setting_checked_once() {
+    use crate::camera::PixelFilter;
+    let s = Settings::from_json(&changes(json!({"filter": "gaussian:stddev=0.4"}))).unwrap();
+    assert_eq!(
+        s.image.filter,
+        PixelFilter::Gaussian {
+            stddev: 0.4,
+            radius: 1.6
+        }
+    );
+    // The wire format writes the canonical spelling, which reads back.
+    let json = s.to_json();
+    assert_eq!(json["filter"], json!("gaussian:stddev=0.4,radius=1.6"));
+    assert_eq!(Settings::from_json(&json).unwrap(), s);
+    assert_eq!(
+        Settings::default().to_json()["filter"],
+        json!("box:radius=0.5")
+    );
+    // A Mitsuba Gaussian hint gets Mitsuba's radius, 4σ.
+    let hints = RenderHints {
+        filter: Some(candela_scene::FilterHint::MITSUBA_DEFAULT),
+        ..RenderHints::default()
+    };
+    let resolved = Settings::resolve(&hints, &Map::new()).unwrap();
+    assert_eq!(resolved.image.filter, PixelFilter::MITSUBA_DEFAULT);
+    assert_eq!(
+        resolved.camera_options().filter,
+        PixelFilter::MITSUBA_DEFAULT
+    );
+    for (bad, says) in [
+        (
+            json!({"filter": "sinc"}),
+            "setting `filter` = \"sinc\": unknown filter \"sinc\"",
+        ),
+        (
+            json!({"filter": "tent:radius=9"}),
+            "the radius must be in (0, 8] pixels",
+        ),
+        (json!({"filter": 2}), "setting `filter` = 2"),
+    ] {
+        let err = refused(bad.clone());
+        assert!(err.contains(says), "{bad}: {err}");
+        assert!(!err.contains('\n'), "{err}");
+    }
 }

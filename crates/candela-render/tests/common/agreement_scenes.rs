@@ -58,6 +58,21 @@ pub fn cs184_box_thin_lens(file: &str, lens_radius: f32, focal_distance: f32) ->
     scene
 }
 
+/// A CS184 box whose pixels are reconstructed with `filter` (camera
+/// samples drawn from it, light paths splatted over its support).
+pub fn cs184_box_filtered(file: &str, filter: &str) -> Scene {
+    let opts = SceneOptions {
+        filter: filter.parse().expect("a filter"),
+        ..options(CameraMode::Cs184)
+    };
+    let scene = build(&load_file(super::cs184(file)), &opts);
+    assert!(
+        !scene.camera.filter.is_pixel_box(),
+        "a filter wider than the pixel"
+    );
+    scene
+}
+
 /// One of the project's Mitsuba scenes (`scenes/mitsuba/`) through its
 /// own camera.
 pub fn mitsuba_box(file: &str) -> Scene {

@@ -1,6 +1,17 @@
 //! The sensor (camera), its film and sampler, and the integrator. Film
-//! size, sample count and depth become [`crate::RenderHints`]: defaults
-//! that command-line flags override.
+//! size, reconstruction filter, sample count and depth become
+//! [`crate::RenderHints`]: defaults that command-line flags override.
+//!
+//! # Reconstruction filter
+//! The film's `<rfilter>` (box, tent, gaussian, mitchell, catmullrom,
+//! lanczos, with Mitsuba 3's parameter names and defaults) becomes a
+//! [`FilterHint`]; without one, Mitsuba's default, a Gaussian of σ = 0.5
+//! (radius 2). Other filters are reported once by name and replaced by
+//! that default. Mitsuba's film samples only inside the frame
+//! (`sample_border` false), i.e. its edge pixels see a truncated filter;
+//! Candela's camera samples the whole filter there, up to `radius − 0.5`
+//! pixels outside the frame (the renderer's `camera/filter.rs`), so the
+//! two differ slightly in the outermost pixels only.
 //!
 //! # Camera handedness
 //! A Mitsuba camera looks down its local +Z with +Y up and +X to the *left*
@@ -22,6 +33,7 @@ use super::values::{float, integer, string};
 use super::Builder;
 use crate::desc::{CameraDesc, Projection};
 use crate::error::{ErrorKind, LoadError};
+use crate::hints::FilterHint;
 use glam::{Mat4, Vec3};
 
 /// Candela's depth for Mitsuba's unlimited `max_depth = -1`.
@@ -83,7 +95,7 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
             format!("unknown sensor type \"{kind}\""),
         ));
     }
-    let film = film(b, doc, node)?;
+    let (film, filter) = film(b, doc, node)?;
     sampler(b, doc, node)?;
     let (xfov_deg, yfov_deg) = fields_of_view(doc, node, film)?;
     let projection = if kind == "thinlens" {
@@ -127,6 +139,7 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
     if b.scene.cameras.is_empty() {
         b.hints.file_camera = true;
         b.hints.resolution = Some(film);
+        b.hints.filter = Some(filter);
     }
     b.scene.cameras.push(CameraDesc {
         name: doc.attr(node, "id")?.unwrap_or(kind),
@@ -193,10 +206,11 @@ fn fields_of_view(doc: &Doc, node: XNode, (w, h): (u32, u32)) -> Result<(f32, f3
     Ok((2.0 * tx.atan().to_degrees(), 2.0 * ty.atan().to_degrees()))
 }
 
-/// The sensor's `<film>` size (Mitsuba's default without one).
-fn film(b: &mut Builder, doc: &Doc, sensor: XNode) -> Result<(u32, u32), LoadError> {
+/// The sensor's `<film>` size and reconstruction filter (Mitsuba's
+/// defaults without one).
+fn film(b: &mut Builder, doc: &Doc, sensor: XNode) -> Result<((u32, u32), FilterHint), LoadError> {
     let Some(film) = elements(sensor).find(|c| c.tag_name().name() == "film") else {
-        return Ok(DEFAULT_FILM);
+        return Ok((DEFAULT_FILM, FilterHint::MITSUBA_DEFAULT));
     };
     let w = integer(doc, film, "width", DEFAULT_FILM.0 as i64)?;
     let h = integer(doc, film, "height", DEFAULT_FILM.1 as i64)?;
@@ -215,7 +229,67 @@ fn film(b: &mut Builder, doc: &Doc, sensor: XNode) -> Result<(u32, u32), LoadErr
             "film cropping is not supported (the whole film is rendered)",
         )?;
     }
-    Ok((w as u32, h as u32))
+    let filter = match elements(film).find(|c| c.tag_name().name() == "rfilter") {
+        Some(node) => rfilter(b, doc, node)?,
+        None => FilterHint::MITSUBA_DEFAULT,
+    };
+    Ok(((w as u32, h as u32), filter))
+}
+
+/// An `<rfilter>`, with Mitsuba 3's parameter names and defaults; an
+/// unsupported one is reported and replaced by Mitsuba's default.
+fn rfilter(b: &mut Builder, doc: &Doc, node: XNode) -> Result<FilterHint, LoadError> {
+    let kind = doc.plugin_type(node)?;
+    let positive = |name: &str, default: f32| -> Result<f32, LoadError> {
+        let v = float(doc, node, name, default)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(doc.err(
+                node,
+                ErrorKind::BadValue,
+                format!("rfilter {kind}: {name} {v} must be > 0"),
+            ))
+        }
+    };
+    Ok(match kind.as_str() {
+        "box" => FilterHint::Box,
+        "tent" => FilterHint::Tent {
+            radius: positive("radius", 1.0)?,
+        },
+        "gaussian" => FilterHint::Gaussian {
+            stddev: positive("stddev", 0.5)?,
+        },
+        "mitchell" => FilterHint::Mitchell {
+            b: float(doc, node, "B", 1.0 / 3.0)?,
+            c: float(doc, node, "C", 1.0 / 3.0)?,
+        },
+        "catmullrom" => FilterHint::CatmullRom,
+        "lanczos" => {
+            let lobes = integer(doc, node, "lobes", 3)?;
+            if !(1..=8).contains(&lobes) {
+                return Err(doc.err(
+                    node,
+                    ErrorKind::BadValue,
+                    format!("rfilter lanczos: lobes {lobes} is not in 1..=8"),
+                ));
+            }
+            FilterHint::Lanczos {
+                lobes: lobes as u32,
+            }
+        }
+        _ => {
+            b.warn(
+                doc,
+                node,
+                format!(
+                    "rfilter \"{kind}\" is not supported (Mitsuba's default gaussian, \
+                     stddev 0.5, is used)"
+                ),
+            )?;
+            FilterHint::MITSUBA_DEFAULT
+        }
+    })
 }
 
 /// The sensor's `<sampler>` sample count.

@@ -45,18 +45,35 @@ pub struct BidirSettings {
     pub technique_layers: bool,
 }
 
-/// The splat of a t = 1 contribution `l` landing at film position `film`
-/// (pixels): scaled by the pixel count, since the film divides splat sums
-/// by the number of light subpaths (see `film/splat.rs` and the camera's
-/// importance docs), for film layer `layer` (0 the image, k the extra
-/// layer k − 1).
-pub(crate) fn splat_at(scene: &Scene, film: Vec2, l: Vec3, layer: u32) -> Splat {
+/// Splats a t = 1 contribution `l` landing at film position `film`
+/// (pixels) into `splats`: scaled by the pixel count, since the film
+/// divides splat sums by the number of light subpaths (see `film/splat.rs`
+/// and the camera's importance docs), for film layer `layer` (0 the image,
+/// k the extra layer k − 1). The one-pixel box gives one splat, to the
+/// pixel `film` lies in; a wider reconstruction filter one to every pixel
+/// whose filter covers `film`, weighted by the normalised filter there
+/// (`camera/filter.rs`), so that light paths estimate the same filtered
+/// image as camera paths.
+pub(crate) fn splat_at(scene: &Scene, film: Vec2, l: Vec3, layer: u32, splats: &mut Vec<Splat>) {
     let (w, h) = (scene.camera.width, scene.camera.height);
-    Splat {
-        x: (film.x.max(0.0) as u32).min(w - 1),
-        y: (film.y.max(0.0) as u32).min(h - 1),
-        value: l * (w as f32 * h as f32),
-        layer,
+    let value = l * (w as f32 * h as f32);
+    let filter = &scene.camera.filter;
+    if filter.is_pixel_box() {
+        splats.push(Splat {
+            x: (film.x.max(0.0) as u32).min(w - 1),
+            y: (film.y.max(0.0) as u32).min(h - 1),
+            value,
+            layer,
+        });
+        return;
+    }
+    for (x, y, weight) in filter.pixels_covering(film, w, h) {
+        splats.push(Splat {
+            x,
+            y,
+            value: value * weight,
+            layer,
+        });
     }
 }
 
@@ -113,11 +130,10 @@ pub fn bdpt_radiance<R: PathRecorder>(
                 .then(|| techniques::layer_index(s, t));
             match c.film {
                 Some(film) => {
-                    ctx.splats.push(splat_at(scene, film, c.l * w, 0));
+                    splat_at(scene, film, c.l * w, 0, &mut ctx.splats);
                     if let Some(i) = layer {
-                        ctx.splats
-                            .push(splat_at(scene, film, c.l * w, i as u32 + 1));
-                        ctx.splats.push(splat_at(scene, film, c.l, i as u32 + 2));
+                        splat_at(scene, film, c.l * w, i as u32 + 1, &mut ctx.splats);
+                        splat_at(scene, film, c.l, i as u32 + 2, &mut ctx.splats);
                     }
                 }
                 None => {
