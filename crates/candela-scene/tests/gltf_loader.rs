@@ -167,6 +167,7 @@ fn punctual_lights_are_divided_by_683_lumens_per_watt() {
         direction,
         intensity,
         cone_angle_deg,
+        edge,
         ..
     } = lights[2].kind
     else {
@@ -175,7 +176,13 @@ fn punctual_lights_are_divided_by_683_lumens_per_watt() {
     assert!(close(position, Vec3::new(1.0, 2.0, 3.0)) && close(direction, Vec3::NEG_Z));
     assert!(close(intensity, Vec3::splat(0.1)));
     assert!((cone_angle_deg - 2.0 * 0.5f32.to_degrees()).abs() < 1e-4);
-    assert!(l.report.mentions("spot cone"), "{}", l.report);
+    // The smooth fade from the inner cone (0.1 rad) to the outer one.
+    match edge {
+        candela_scene::SpotEdge::SmoothInCosine { inner_angle_deg } => {
+            assert!((inner_angle_deg - 2.0 * 0.1f32.to_degrees()).abs() < 1e-4)
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]

@@ -6,7 +6,7 @@
 
 use candela_scene::{
     load, BsdfDesc, EnvironmentDesc, FilterHint, LightKind, LoadOptions, Loaded, MicrofacetModel,
-    Projection,
+    Projection, SpotEdge,
 };
 use glam::Vec3;
 use proptest::prelude::*;
@@ -577,4 +577,49 @@ fn an_unknown_filter_is_reported_once_and_falls_back_to_the_default() {
     let err = load(&bad, &LoadOptions::default()).unwrap_err();
     assert!(err.to_string().contains("radius -1 must be > 0"), "{err}");
     assert!(err.to_string().contains("rfilter"), "{err}");
+}
+
+#[test]
+fn a_spot_fades_from_its_beam_width_to_its_cutoff() {
+    // Mitsuba's default beam_width is 3/4 of cutoff_angle: a linear fade in
+    // the angle between them (drawn as a hard cone before: +26% on the
+    // wall it lit against Mitsuba). A beam as wide as the cutoff is hard.
+    let dir = candela_testkit::TempDir::new("mitsuba-spot");
+    let path = dir.join("spot.xml");
+    std::fs::write(
+        &path,
+        r#"<scene version="3.0.0">
+    <emitter type="spot"><float name="cutoff_angle" value="30"/></emitter>
+    <emitter type="spot">
+        <float name="cutoff_angle" value="30"/><float name="beam_width" value="30"/>
+    </emitter>
+</scene>"#,
+    )
+    .unwrap();
+    let l = load(&path, &strict()).expect("a faded spot loads without a warning");
+    let edges: Vec<SpotEdge> = l
+        .scene
+        .lights
+        .iter()
+        .map(|light| match light.kind {
+            LightKind::Spot {
+                cone_angle_deg,
+                edge,
+                ..
+            } => {
+                assert_eq!(cone_angle_deg, 60.0);
+                edge
+            }
+            ref other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(
+        edges,
+        [
+            SpotEdge::LinearInAngle {
+                beam_angle_deg: 45.0
+            },
+            SpotEdge::Hard
+        ]
+    );
 }

@@ -176,9 +176,11 @@ impl super::SpotLight {
         if pdf_dir <= 0.0 {
             return None;
         }
+        // The edge's fade is a weight on the sample (the density follows
+        // `cos^n` only), as `sample_li` applies it.
         Some(LightEmission {
             ray: Ray::new(self.position, dir),
-            le: self.intensity * self.falloff(cos),
+            le: self.intensity * (self.falloff(cos) * self.edge.at(cos)),
             normal: Vec3::ZERO,
             pdf_pos: 1.0,
             pdf_dir,

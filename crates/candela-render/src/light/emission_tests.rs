@@ -92,6 +92,7 @@ fn spot(cone_deg: f32, exponent: f32) -> SpotLight {
         intensity: Vec3::new(3.0, 2.0, 1.0),
         cos_cutoff: (cone_deg.to_radians() * 0.5).cos(),
         exponent,
+        edge: SpotFade::Hard,
     }
 }
 
@@ -139,6 +140,21 @@ fn lights_with_power() -> Vec<(&'static str, Light, DVec3)> {
         s.intensity.as_dvec3() * 2.0 * PI * (1.0 - c0.powf(k)) / k
     };
     let spots = [spot(40.0, 0.0), spot(70.0, 3.0), spot(250.0, 0.0)];
+    // Faded edges (half angles): Mitsuba's, linear in the angle from 20° to
+    // 35°; glTF's, t² in the cosine from 15° to 40°. Their flux, with b and
+    // c the half angles: 2π I [1 − cos b + (sin b − sin c + (c − b) cos b) /
+    // (c − b)] (∫ (c − θ) sin θ dθ by parts), and 2π I [1 − cos b + (cos b
+    // − cos c) / 3] (∫ t² dcos θ).
+    let (b, c) = (20f64.to_radians(), 35f64.to_radians());
+    let mut mitsuba = spot(70.0, 0.0);
+    mitsuba.edge = SpotFade::linear_in_angle(b as f32, c as f32);
+    let mitsuba_power = mitsuba.intensity.as_dvec3()
+        * (2.0 * PI * (1.0 - b.cos() + (b.sin() - c.sin() + (c - b) * b.cos()) / (c - b)));
+    let (bi, co) = (15f64.to_radians(), 40f64.to_radians());
+    let mut gltf = spot(80.0, 0.0);
+    gltf.edge = SpotFade::smooth_in_cosine(bi as f32, co as f32);
+    let gltf_power =
+        gltf.intensity.as_dvec3() * (2.0 * PI * (1.0 - bi.cos() + (bi.cos() - co.cos()) / 3.0));
     let r2 = f64::from(BOUNDS.radius).powi(2);
     let env = environment();
     let env_power = environment_radiance_integral(&env_image()) * PI * r2;
@@ -179,6 +195,8 @@ fn lights_with_power() -> Vec<(&'static str, Light, DVec3)> {
             Light::Spot(spots[2].clone()),
             spot_power(&spots[2]),
         ),
+        ("spot, Mitsuba's fade", Light::Spot(mitsuba), mitsuba_power),
+        ("spot, glTF's fade", Light::Spot(gltf), gltf_power),
         (
             "directional",
             Light::Directional(DirectionalLight {

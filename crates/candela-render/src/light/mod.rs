@@ -51,7 +51,7 @@ mod tree;
 
 use area::LampSize;
 pub use area::{AreaLight, AreaShape, TexturedEmission};
-pub use delta::{DirectionalLight, PointLight, SpotLight};
+pub use delta::{DirectionalLight, PointLight, SpotFade, SpotLight};
 pub use emission::{LightEmission, SceneSphere};
 pub use envmap::{EnvironmentLight, EnvironmentMap, EnvironmentOptions};
 pub use infinite::AmbientLight;

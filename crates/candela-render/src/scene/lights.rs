@@ -5,13 +5,13 @@ use super::{Geometry, SceneNames};
 use crate::light::TexturedEmission;
 use crate::light::{
     AmbientLight, AreaLight, AreaShape, DirectionalLight, EnvironmentLight, EnvironmentMap, Light,
-    LightSet, PointLight, SpotLight,
+    LightSet, PointLight, SpotFade, SpotLight,
 };
 use crate::material::Material;
 use crate::sampling::warp::Parallelogram;
 use crate::shading::MaterialTextures;
 use crate::shape::{PrimKind, PrimRef};
-use candela_scene::{LightKind, SceneDesc};
+use candela_scene::{LightKind, SceneDesc, SpotEdge};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
@@ -74,13 +74,26 @@ pub fn build_lights(
                 intensity,
                 cone_angle_deg,
                 falloff_exponent,
-            } => Light::Spot(SpotLight {
-                position,
-                direction: direction.normalize_or(-Vec3::Y),
-                intensity,
-                cos_cutoff: (cone_angle_deg.to_radians() * 0.5).cos(),
-                exponent: falloff_exponent,
-            }),
+                edge,
+            } => {
+                let cutoff = cone_angle_deg.to_radians() * 0.5;
+                Light::Spot(SpotLight {
+                    position,
+                    direction: direction.normalize_or(-Vec3::Y),
+                    intensity,
+                    cos_cutoff: cutoff.cos(),
+                    exponent: falloff_exponent,
+                    edge: match edge {
+                        SpotEdge::Hard => SpotFade::Hard,
+                        SpotEdge::LinearInAngle { beam_angle_deg } => {
+                            SpotFade::linear_in_angle(beam_angle_deg.to_radians() * 0.5, cutoff)
+                        }
+                        SpotEdge::SmoothInCosine { inner_angle_deg } => {
+                            SpotFade::smooth_in_cosine(inner_angle_deg.to_radians() * 0.5, cutoff)
+                        }
+                    },
+                })
+            }
             LightKind::Directional {
                 direction,
                 radiance,

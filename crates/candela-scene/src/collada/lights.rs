@@ -5,7 +5,7 @@ use super::builder::Builder;
 use super::lenient::{cgl_technique, color, float_or, Color};
 use super::numbers::float;
 use super::xml::{child, elements, require, technique, text, Ctx, XNode};
-use crate::desc::{LightDesc, LightKind};
+use crate::desc::{LightDesc, LightKind, SpotEdge};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4, Vec3};
 
@@ -62,6 +62,7 @@ fn standard(ctx: &Ctx, model: XNode, m: Mat4) -> Result<Option<LightKind>, LoadE
             intensity: color()?,
             cone_angle_deg: float_or(ctx, child(model, "falloff_angle"), 180.0)?,
             falloff_exponent: float_or(ctx, child(model, "falloff_exponent"), 0.0)?,
+            edge: SpotEdge::Hard,
         },
         "ambient" => LightKind::Ambient { radiance: color()? },
         "area" => area(ctx, model, m, color()?)?,
@@ -97,6 +98,7 @@ fn blender(ctx: &Ctx, t: XNode, m: Mat4) -> Result<Option<LightKind>, LoadError>
             intensity: color,
             cone_angle_deg: child(t, "spotsize").map_or(Ok(180.0), |n| float(ctx, n))?,
             falloff_exponent: 0.0,
+            edge: SpotEdge::Hard,
         },
         "3" => LightKind::Ambient { radiance: color },
         other => {

@@ -164,6 +164,27 @@ pub struct LightDesc {
     pub loc: SourceLoc,
 }
 
+/// How a spot light's intensity fades toward the edge of its cone (the
+/// half angle is half of `cone_angle_deg`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SpotEdge {
+    /// Full intensity up to the edge (COLLADA, Blender).
+    Hard,
+    /// Mitsuba 3's `spot`: full intensity inside `beam_angle_deg` (a full
+    /// angle, like `cone_angle_deg`), then linear in the angle from the
+    /// axis down to zero at the cone's edge.
+    LinearInAngle {
+        /// Full angle of the fully lit beam, in degrees.
+        beam_angle_deg: f32,
+    },
+    /// glTF's `KHR_lights_punctual` spot: `t²` with `t` linear in `cos θ`,
+    /// 0 at the outer cone (the edge) and 1 at the inner one.
+    SmoothInCosine {
+        /// Full angle of the inner cone, in degrees.
+        inner_angle_deg: f32,
+    },
+}
+
 /// Light types and their world-space parameters.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LightKind {
@@ -193,6 +214,8 @@ pub enum LightKind {
         cone_angle_deg: f32,
         /// COLLADA `falloff_exponent`.
         falloff_exponent: f32,
+        /// How the intensity fades toward the cone's edge.
+        edge: SpotEdge,
     },
     /// Uniform radiance from the upper hemisphere (an infinite light).
     Ambient {

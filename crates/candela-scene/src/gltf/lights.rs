@@ -10,7 +10,7 @@
 //! unit, are taken as radiance as they are.
 
 use super::Ctx;
-use crate::desc::{LightDesc, LightKind};
+use crate::desc::{LightDesc, LightKind, SpotEdge};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat4, Vec3};
 use gltf::khr_lights_punctual::Kind;
@@ -73,18 +73,22 @@ pub(super) fn read_light(
                     format!("outer cone angle {outer} degrees is not in (0, 90]"),
                 ));
             }
-            if inner_cone_angle < outer_cone_angle {
-                ctx.warn(
-                    "spot cone",
-                    "the smooth falloff from the inner to the outer cone is drawn as a hard edge at the outer cone",
-                )?;
-            }
+            // The extension's recommended smooth falloff between the cones;
+            // an inner cone as wide as the outer one is a hard edge.
+            let edge = if inner_cone_angle < outer_cone_angle {
+                SpotEdge::SmoothInCosine {
+                    inner_angle_deg: 2.0 * inner_cone_angle.max(0.0).to_degrees(),
+                }
+            } else {
+                SpotEdge::Hard
+            };
             LightKind::Spot {
                 position,
                 direction: forward()?,
                 intensity: power,
                 cone_angle_deg: 2.0 * outer,
                 falloff_exponent: 0.0,
+                edge,
             }
         }
     };

@@ -10,7 +10,7 @@ use super::doc::{Doc, XNode};
 use super::transform::to_world;
 use super::values::{float, point};
 use super::Builder;
-use crate::desc::{EnvironmentDesc, LightDesc, LightKind};
+use crate::desc::{EnvironmentDesc, LightDesc, LightKind, SpotEdge};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat4, Vec3};
 
@@ -48,15 +48,29 @@ pub(super) fn emitter(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Loa
                     format!("cutoff_angle {cutoff} is not in (0, 90]"),
                 ));
             }
-            if beam < cutoff {
-                b.warn(doc, node, "the spot light's fade from beam_width to cutoff_angle is rendered as a hard edge at cutoff_angle")?;
+            if !(beam > 0.0 && beam.is_finite()) {
+                return Err(doc.err(
+                    node,
+                    ErrorKind::BadValue,
+                    format!("beam_width {beam} is not a positive angle"),
+                ));
             }
+            // Mitsuba fades linearly in the angle from beam_width (full)
+            // to cutoff_angle (none); a beam at least as wide is a hard cone.
+            let edge = if beam < cutoff {
+                SpotEdge::LinearInAngle {
+                    beam_angle_deg: 2.0 * beam,
+                }
+            } else {
+                SpotEdge::Hard
+            };
             LightKind::Spot {
                 position: m.transform_point3(Vec3::ZERO),
                 direction: forward(doc, node, m)?,
                 intensity: b.constant(doc, node, "intensity", Vec3::ONE)?,
                 cone_angle_deg: 2.0 * cutoff,
                 falloff_exponent: 0.0,
+                edge,
             }
         }
         "directional" => {
