@@ -140,13 +140,25 @@ impl SpotLight {
         if cos < self.cos_cutoff {
             return None;
         }
-        let falloff = if self.exponent > 0.0 {
+        sample.l *= self.intensity_scale(cos);
+        Some(sample)
+    }
+
+    /// `cos^n`, or 1 without a falloff exponent: the part of the intensity
+    /// emission sampling draws in proportion to.
+    pub(super) fn falloff(&self, cos: f32) -> f32 {
+        if self.exponent > 0.0 {
             cos.max(0.0).powf(self.exponent)
         } else {
             1.0
-        };
-        sample.l *= falloff * self.edge.at(cos);
-        Some(sample)
+        }
+    }
+
+    /// The intensity along a direction at `cos` from the axis (inside the
+    /// cone), relative to the axis: the falloff times the edge's fade.
+    /// Light samples and emitted rays both carry it.
+    pub(super) fn intensity_scale(&self, cos: f32) -> f32 {
+        self.falloff(cos) * self.edge.at(cos)
     }
 
     pub(super) fn power(&self) -> f32 {
@@ -197,16 +209,22 @@ mod tests {
         assert_eq!(s.l, Vec3::splat(2.0));
     }
 
-    #[test]
-    fn spot_light_is_dark_outside_its_cone() {
-        let light = SpotLight {
+    /// A unit spot 1 above the origin pointing down, with a cutoff half
+    /// angle of `cutoff_deg` and the fade `edge`.
+    fn spot_down(cutoff_deg: f32, edge: SpotFade) -> SpotLight {
+        SpotLight {
             position: Vec3::new(0.0, 1.0, 0.0),
             direction: -Vec3::Y,
             intensity: Vec3::ONE,
-            cos_cutoff: 30f32.to_radians().cos(),
+            cos_cutoff: cutoff_deg.to_radians().cos(),
             exponent: 0.0,
-            edge: SpotFade::Hard,
-        };
+            edge,
+        }
+    }
+
+    #[test]
+    fn spot_light_is_dark_outside_its_cone() {
+        let light = spot_down(30.0, SpotFade::Hard);
         assert!(light.sample_li(Vec3::ZERO).is_some());
         assert!(light.sample_li(Vec3::new(1.0, 0.0, 0.0)).is_none());
     }
@@ -223,14 +241,10 @@ mod tests {
     #[test]
     fn mitsubas_spot_fades_linearly_in_the_angle() {
         // Half angles: beam 15 degrees, cutoff 30.
-        let light = SpotLight {
-            position: Vec3::new(0.0, 1.0, 0.0),
-            direction: -Vec3::Y,
-            intensity: Vec3::ONE,
-            cos_cutoff: 30f32.to_radians().cos(),
-            exponent: 0.0,
-            edge: SpotFade::linear_in_angle(15f32.to_radians(), 30f32.to_radians()),
-        };
+        let light = spot_down(
+            30.0,
+            SpotFade::linear_in_angle(15f32.to_radians(), 30f32.to_radians()),
+        );
         for (deg, want) in [
             (0.0, 1.0),
             (10.0, 1.0),
@@ -248,14 +262,7 @@ mod tests {
     fn gltfs_spot_fades_smoothly_in_the_cosine() {
         // Half angles: inner 20 degrees, outer 40.
         let (inner, outer) = (20f32.to_radians(), 40f32.to_radians());
-        let light = SpotLight {
-            position: Vec3::new(0.0, 1.0, 0.0),
-            direction: -Vec3::Y,
-            intensity: Vec3::ONE,
-            cos_cutoff: outer.cos(),
-            exponent: 0.0,
-            edge: SpotFade::smooth_in_cosine(inner, outer),
-        };
+        let light = spot_down(40.0, SpotFade::smooth_in_cosine(inner, outer));
         assert!((intensity_at(&light, 10.0) - 1.0).abs() < 1e-4);
         // Halfway in the cosine: t = 1/2, intensity 1/4.
         let mid = ((inner.cos() + outer.cos()) / 2.0).acos().to_degrees();

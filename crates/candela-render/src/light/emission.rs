@@ -180,20 +180,11 @@ impl super::SpotLight {
         // `cos^n` only), as `sample_li` applies it.
         Some(LightEmission {
             ray: Ray::new(self.position, dir),
-            le: self.intensity * (self.falloff(cos) * self.edge.at(cos)),
+            le: self.intensity * self.intensity_scale(cos),
             normal: Vec3::ZERO,
             pdf_pos: 1.0,
             pdf_dir,
         })
-    }
-
-    /// `cos^n`, or 1 without falloff (as `sample_li` applies it).
-    fn falloff(&self, cos: f32) -> f32 {
-        if self.exponent > 0.0 {
-            cos.max(0.0).powf(self.exponent)
-        } else {
-            1.0
-        }
     }
 
     /// Solid-angle density of emitting along `dir`:
