@@ -23,6 +23,7 @@ mod validate;
 mod wide;
 mod wide_collapse;
 mod wide_fill;
+mod wide_order;
 mod wide_traverse;
 mod wide_validate;
 

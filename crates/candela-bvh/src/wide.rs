@@ -125,30 +125,28 @@ impl<const W: usize> WideBvh<W> {
         } = bvh;
         let mut nodes = Vec::with_capacity(bin.len() / (W / 2).max(1) + 1);
         let mut depth = 0;
-        let mut splitter = fill
-            .filter(|(boxes, _)| order.iter().all(|&i| (i as usize) < boxes.len()))
-            .map(|(boxes, block)| LeafSplitter {
-                boxes,
-                order: &mut order,
-                block,
-                leaf_cost: options.wide_leaf_cost
-                    / options.intersection_cost.max(f32::MIN_POSITIVE),
-            });
+        // Boxes that are not the tree's input (too few) neither split
+        // leaves nor order lanes.
+        let input_boxes =
+            fill.filter(|(boxes, _)| order.iter().all(|&i| (i as usize) < boxes.len()));
+        let mut splitter = input_boxes.map(|(boxes, block)| LeafSplitter {
+            boxes,
+            order: &mut order,
+            block,
+            leaf_cost: options.wide_leaf_cost / options.intersection_cost.max(f32::MIN_POSITIVE),
+        });
+        let costs = CollapseCosts {
+            node: options.wide_node_cost,
+            block: options.intersection_cost,
+            leaf: options.wide_leaf_cost,
+            // Blocks as the leaves are tested: the fill's, else the build's.
+            block_size: fill.map_or(options.leaf_block, |(_, b)| b as usize).max(1) as u32,
+            max_leaf: options.max_leaf_size.max(1) as u32,
+        };
         if !bin.is_empty() {
             let opening = match options.collapse {
                 Collapse::Greedy => Opening::Greedy,
-                Collapse::Sah => Opening::Sah(SahCollapse::new(
-                    &bin,
-                    CollapseCosts {
-                        node: options.wide_node_cost,
-                        block: options.intersection_cost,
-                        leaf: options.wide_leaf_cost,
-                        // Blocks as the leaves are tested: the fill's, else the build's.
-                        block_size: fill.map_or(options.leaf_block, |(_, b)| b as usize).max(1)
-                            as u32,
-                        max_leaf: options.max_leaf_size.max(1) as u32,
-                    },
-                )),
+                Collapse::Sah => Opening::Sah(SahCollapse::new(&bin, costs)),
             };
             let root = if bin[0].is_leaf() {
                 vec![Lane::of(&bin, 0)]
@@ -157,12 +155,17 @@ impl<const W: usize> WideBvh<W> {
             };
             depth = emit(&bin, root, &opening, &mut nodes, 1, &mut splitter);
         }
-        Self {
-            nodes: crate::on_huge_pages(nodes),
+        let mut tree = Self {
+            nodes,
             order,
             depth,
             avx2: W == 8 && crate::avx2::has_avx2(),
+        };
+        if let Some((boxes, _)) = input_boxes {
+            tree.order_lanes_for_any_hit(boxes, &costs);
         }
+        tree.nodes = crate::on_huge_pages(tree.nodes);
+        tree
     }
 
     /// Moves every leaf to start at a multiple of `block` slots, filling

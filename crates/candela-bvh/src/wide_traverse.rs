@@ -242,19 +242,21 @@ fn prefetch_entry<const W: usize>(
     }
 }
 
-/// Whether `a` is visited before `b`. Closest hit: the nearer entry (ties
-/// to the later lane). Any hit: leaves before subtrees, in lane order
-/// otherwise. A leaf costs about one node visit and may end the query at
-/// once: large occluders (a wall, a ground quad) sit in leaves near the
-/// root, and an occluded shadow ray then stops there instead of first
-/// walking the detailed geometry its path also crosses. An unoccluded ray
-/// visits everything it enters in either order.
+/// Whether `a` is visited before `b`, for `a` in an earlier lane than `b`.
+/// Closest hit: the nearer entry (ties to the later lane). Any hit: leaves
+/// before subtrees, in lane order otherwise, which the build chose for any
+/// hit (`wide_order.rs`: the likeliest occluders for their cost first). A
+/// leaf costs about one node visit and may end the query at once: large
+/// occluders (a wall, a ground quad) sit in leaves near the root, and an
+/// occluded shadow ray then stops there instead of first walking the
+/// detailed geometry its path also crosses. An unoccluded ray visits
+/// everything it enters in either order.
 #[inline(always)]
 fn takes_first(a: &Entry, b: &Entry, ordered: bool) -> bool {
     if ordered {
         a.t < b.t
     } else {
-        a.count > 0 && b.count == 0
+        a.count > 0 || b.count == 0
     }
 }
 
