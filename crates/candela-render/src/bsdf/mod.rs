@@ -249,6 +249,18 @@ impl Bsdf {
         }
     }
 
+    /// Whether its microfacet roughness differs along the shading frame's
+    /// x and y, so the frame's tangent must follow the surface (dp/du).
+    pub fn is_anisotropic(&self) -> bool {
+        match self {
+            Bsdf::RoughGlass { distribution, .. } | Bsdf::Microfacet { distribution, .. } => {
+                let (ax, ay) = distribution.alphas();
+                ax != ay
+            }
+            _ => false,
+        }
+    }
+
     /// Whether every lobe is a delta, so `f` and `pdf` are always zero and
     /// light sampling is useless here.
     pub fn is_specular(&self) -> bool {

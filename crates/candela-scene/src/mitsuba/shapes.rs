@@ -11,7 +11,7 @@ use super::values::{boolean, float, point};
 use super::{tessellate, Builder};
 use crate::desc::{InstanceDesc, MaterialDesc, MeshDesc, SphereDesc};
 use crate::error::{ErrorKind, LoadError};
-use glam::{Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec3};
 
 /// A shape of a group, in the group's space.
 #[derive(Clone, Debug)]
@@ -119,7 +119,7 @@ impl Builder {
             )?;
         }
         let transform = checked_transform(doc, node)?;
-        let Some((center, radius)) = place_sphere(transform, center, radius) else {
+        let Some((center, radius, rotation)) = place_sphere(transform, center, radius) else {
             return Err(doc.err(
                 node,
                 ErrorKind::BadValue,
@@ -131,6 +131,8 @@ impl Builder {
             center,
             radius,
             material: self.shape_material(doc, node)?,
+            // Mitsuba's sphere: the pole along its local +z, u around it.
+            axes: rotation,
             loc: doc.loc(node),
         };
         match group {
@@ -197,7 +199,9 @@ impl Builder {
                     loc: doc.loc(node),
                 }),
                 GroupItem::Sphere(s) => {
-                    let Some((center, radius)) = place_sphere(transform, s.center, s.radius) else {
+                    let Some((center, radius, rotation)) =
+                        place_sphere(transform, s.center, s.radius)
+                    else {
                         return Err(doc.err(
                             node,
                             ErrorKind::BadValue,
@@ -207,6 +211,7 @@ impl Builder {
                     self.scene.spheres.push(SphereDesc {
                         center,
                         radius,
+                        axes: rotation * s.axes,
                         loc: doc.loc(node),
                         ..s
                     });
@@ -216,8 +221,8 @@ impl Builder {
         Ok(())
     }
 
-    /// The material of a shape: its `<bsdf>` or `<ref>` (default grey
-    /// diffuse), plus the radiance of its area `<emitter>`.
+    /// The material of a shape: its `<bsdf>` or `<ref>` (default one-sided
+    /// grey diffuse), plus the radiance of its area `<emitter>`.
     fn shape_material(&mut self, doc: &Doc, node: XNode) -> Result<usize, LoadError> {
         let (mut inline, mut named, mut emission) = (None, None, None);
         for c in elements(node) {
@@ -247,11 +252,11 @@ impl Builder {
                 if let Some(i) = self.default_material {
                     return Ok(i);
                 }
-                let i = self.push_material(MaterialDesc::default_grey());
+                let i = self.push_material(Self::default_diffuse());
                 self.default_material = Some(i);
                 return Ok(i);
             }
-            None => MaterialDesc::default_grey(),
+            None => Self::default_diffuse(),
         };
         Ok(self.push_material(MaterialDesc {
             emission,
@@ -287,12 +292,18 @@ fn checked_transform(doc: &Doc, node: XNode) -> Result<Mat4, LoadError> {
     Ok(m)
 }
 
-/// A sphere's centre and radius after `m`, or `None` if `m` does not scale
-/// uniformly (within 0.1 %).
-fn place_sphere(m: Mat4, center: Vec3, radius: f32) -> Option<(Vec3, f32)> {
+/// A sphere's centre and radius after `m`, with `m`'s rotation (its
+/// columns normalised), or `None` if `m` does not scale uniformly (within
+/// 0.1 %).
+fn place_sphere(m: Mat4, center: Vec3, radius: f32) -> Option<(Vec3, f32, Mat3)> {
     let scales = [m.x_axis, m.y_axis, m.z_axis].map(|c| c.truncate().length());
     let mean = (scales[0] + scales[1] + scales[2]) / 3.0;
     let uniform = scales.iter().all(|s| (s - mean).abs() <= 1e-3 * mean)
         && m.x_axis.truncate().dot(m.y_axis.truncate()).abs() <= 1e-3 * mean * mean;
-    uniform.then(|| (m.transform_point3(center), radius * mean))
+    let rotation = Mat3::from_cols(
+        m.x_axis.truncate() / scales[0],
+        m.y_axis.truncate() / scales[1],
+        m.z_axis.truncate() / scales[2],
+    );
+    uniform.then(|| (m.transform_point3(center), radius * mean, rotation))
 }
