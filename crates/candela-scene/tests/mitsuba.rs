@@ -6,8 +6,7 @@
 
 use candela_scene::{
     load, Alpha, BsdfDesc, EnvironmentDesc, FilterHint, LightKind, LoadOptions, Loaded,
-    MicrofacetModel,
-    Projection, SpotEdge,
+    MicrofacetModel, Projection, SpotEdge,
 };
 use glam::Vec3;
 use proptest::prelude::*;

@@ -48,20 +48,36 @@ fn opaque_bsdfs_are_one_sided_unless_twosided_and_a_second_bsdf_is_the_back() {
     );
     let m = &l.scene.materials;
     assert_eq!(m.len(), 9);
-    assert_eq!((albedo(&m[0]), &m[0].sides), (Vec3::splat(0.1), &Sides::Front));
-    assert_eq!((albedo(&m[1]), &m[1].sides), (Vec3::splat(0.2), &Sides::Both));
+    assert_eq!(
+        (albedo(&m[0]), &m[0].sides),
+        (Vec3::splat(0.1), &Sides::Front)
+    );
+    assert_eq!(
+        (albedo(&m[1]), &m[1].sides),
+        (Vec3::splat(0.2), &Sides::Both)
+    );
     assert_eq!(albedo(&m[2]), Vec3::splat(0.3));
     let Sides::Back(back) = &m[2].sides else {
         panic!("twosided with two BSDFs: {:?}", m[2].sides)
     };
-    assert_eq!((albedo(back), &back.sides), (Vec3::splat(0.4), &Sides::Both));
+    assert_eq!(
+        (albedo(back), &back.sides),
+        (Vec3::splat(0.4), &Sides::Both)
+    );
     assert_eq!(m[3].sides, Sides::Front, "roughconductor");
     assert_eq!(m[4].sides, Sides::Front, "roughplastic");
-    for (i, name) in [(5, "dielectric"), (6, "roughdielectric"), (7, "thindielectric")] {
+    for (i, name) in [
+        (5, "dielectric"),
+        (6, "roughdielectric"),
+        (7, "thindielectric"),
+    ] {
         assert_eq!(m[i].sides, Sides::Both, "{name}");
     }
     // A shape without a BSDF gets Mitsuba's one-sided diffuse 0.5.
-    assert_eq!((albedo(&m[8]), &m[8].sides), (Vec3::splat(0.5), &Sides::Front));
+    assert_eq!(
+        (albedo(&m[8]), &m[8].sides),
+        (Vec3::splat(0.5), &Sides::Front)
+    );
 }
 
 #[test]
@@ -140,4 +156,28 @@ fn a_spheres_axes_are_its_to_world_rotation_with_the_pole_on_local_z() {
     assert!((s[1].radius - 2.0).abs() < 1e-6);
     // Candela's own convention differs: the pole on +Y.
     assert_eq!(SphereDesc::Y_POLE.z_axis, Vec3::Y);
+}
+
+#[test]
+fn flip_normals_on_a_sphere_swaps_the_sides_of_its_bsdf() {
+    let l = load_shapes(
+        "mitsuba-flipped-sphere",
+        r#"
+    <shape type="sphere"><boolean name="flip_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>
+    <shape type="sphere"><boolean name="flip_normals" value="true"/>
+        <bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>"#,
+    );
+    let s = &l.scene.spheres;
+    let m = &l.scene.materials;
+    // One-sided: black on Candela's outward front, the diffuse inside.
+    let flipped = &m[s[0].material];
+    assert_eq!(flipped.bsdf, BsdfDesc::Black);
+    let Sides::Back(inside) = &flipped.sides else {
+        panic!("{:?}", flipped.sides)
+    };
+    assert_eq!(albedo(inside), Vec3::splat(0.6));
+    // Two-sided: the same either way.
+    assert_eq!(m[s[1].material].sides, Sides::Both);
+    assert_eq!(albedo(&m[s[1].material]), Vec3::splat(0.5));
 }

@@ -113,16 +113,13 @@ impl Geometry {
                     meshes: desc.meshes.len(),
                 })?;
             let material = inst.material.unwrap_or(mesh.material);
-            let normal_mapped = desc
-                .materials
-                .get(material)
-                .is_some_and(|m| {
-                    let back_mapped = match &m.sides {
-                        Sides::Back(b) => b.textures.normal.is_some(),
-                        _ => false,
-                    };
-                    m.textures.normal.is_some() || back_mapped
-                });
+            let normal_mapped = desc.materials.get(material).is_some_and(|m| {
+                let back_mapped = match &m.sides {
+                    Sides::Back(b) => b.textures.normal.is_some(),
+                    _ => false,
+                };
+                m.textures.normal.is_some() || back_mapped
+            });
             let tangents: &[Vec4] = if mesh.tangents.is_empty() && normal_mapped {
                 generated[inst.mesh]
                     .get_or_insert_with(|| mesh.generated_tangents().unwrap_or_default())

@@ -118,7 +118,10 @@ fn one_sided_is_black_behind_two_sided_turns_over_and_a_back_bsdf_is_used_behind
         let h = hit(&scene, i, front);
         assert_eq!(h.front_face, front, "square {i}");
         let got = f_at(&scene, &h);
-        assert!(close(got, want), "square {i}, front {front}: {got:?} != {want:?}");
+        assert!(
+            close(got, want),
+            "square {i}, front {front}: {got:?} != {want:?}"
+        );
     }
     // The one-sided square has no BSDF at all from behind, so neither light
     // samples nor BSDF samples nor their MIS weights can see one there.

@@ -278,12 +278,19 @@ fn sphere_uv_in_the_default_axes_is_the_accelerators_uv_and_follows_rotated_axes
     let rotated = glam::Mat3::from_cols(Vec3::X, Vec3::Z, -Vec3::Y);
     for d in dirs {
         let p = c + 1.7 * d.normalize();
-        assert_eq!(sphere_uv_in(SphereDesc::Y_POLE, c, p), sphere_uv(c, p), "{d}");
-        // In the rotated axes the local point is (x, −z, y) of the offset.
+        assert_eq!(
+            sphere_uv_in(SphereDesc::Y_POLE, c, p),
+            sphere_uv(c, p),
+            "{d}"
+        );
+        // In the rotated axes the local point is (x, z, −y) of the offset.
         let q = d.normalize();
         let (u, v) = sphere_uv_in(rotated, c, p);
-        let phi = (-q.z).atan2(q.x).rem_euclid(std::f32::consts::TAU);
+        let phi = q.z.atan2(q.x).rem_euclid(std::f32::consts::TAU);
         assert!((u - phi / std::f32::consts::TAU).abs() < 1e-5, "{d}: u {u}");
-        assert!((v - q.y.acos() / std::f32::consts::PI).abs() < 1e-5, "{d}: v {v}");
+        assert!(
+            (v - (-q.y).acos() / std::f32::consts::PI).abs() < 1e-5,
+            "{d}: v {v}"
+        );
     }
 }
