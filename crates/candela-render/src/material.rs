@@ -13,7 +13,7 @@ use crate::bsdf::{Bsdf, MetallicRoughness, MicrofacetDistribution, Plastic, Roug
 use crate::shading::MaterialTextures;
 use crate::shape::SurfaceHit;
 use crate::texture::TextureCache;
-use candela_scene::{BsdfDesc, MaterialDesc, MicrofacetModel};
+use candela_scene::{Alpha, BsdfDesc, MaterialDesc, MicrofacetModel, Sides};
 use glam::{Vec2, Vec3};
 
 /// A material ready for shading.
@@ -27,6 +27,23 @@ pub struct Material {
     pub emission: Option<Vec3>,
     /// The textures of the description's slots.
     pub textures: MaterialTextures,
+    /// What scatters behind the surface (see [`Material::facing`]).
+    pub back: Back,
+    /// Whether the BSDF's roughness differs along the two tangents, so its
+    /// shading frame must follow the surface's dp/du.
+    pub anisotropic: bool,
+}
+
+/// What a surface does seen from behind its shading normal.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Back {
+    /// The same BSDF, as if the surface faced the viewer (two-sided).
+    #[default]
+    Same,
+    /// Nothing: black, like a BSDF with no value (one-sided).
+    Black,
+    /// Another material's BSDF and textures, turned to face the viewer.
+    Other(Box<Material>),
 }
 
 /// The subset of a description this renderer cannot honour yet, by name.
@@ -40,7 +57,7 @@ impl Material {
     /// returned by name so the caller can report them once.
     pub fn from_desc(
         desc: &MaterialDesc,
-        textures: &mut TextureCache,
+        textures_cache: &mut TextureCache,
     ) -> (Material, Vec<Unsupported>) {
         let mut unsupported = Vec::new();
         let bsdf = match desc.bsdf {
@@ -99,7 +116,7 @@ impl Material {
                 nonlinear,
             } => Some(if alpha > 0.0 {
                 Bsdf::RoughPlastic(RoughPlastic::new(
-                    microfacets(distribution, alpha),
+                    microfacets(distribution, Alpha::isotropic(alpha)),
                     diffuse,
                     specular,
                     ior,
@@ -113,7 +130,7 @@ impl Material {
                 alpha,
                 eta,
                 k,
-            } if alpha > 0.0 => Some(Bsdf::Microfacet {
+            } if alpha.is_rough() => Some(Bsdf::Microfacet {
                 distribution: microfacets(distribution, alpha),
                 eta,
                 k,
@@ -134,7 +151,7 @@ impl Material {
             )),
         };
         let (textures, unusable) =
-            MaterialTextures::from_slots(&desc.textures, bsdf.as_ref(), textures);
+            MaterialTextures::from_slots(&desc.textures, bsdf.as_ref(), textures_cache);
         for slot in unusable {
             unsupported.push(Unsupported(format!(
                 "material '{}': {} texture has no parameter to drive on this BSDF (ignored)",
@@ -147,25 +164,59 @@ impl Material {
             None => desc.emission,
         }
         .filter(|e| e.max_element() > 0.0);
+        let back = match &desc.sides {
+            Sides::Both => Back::Same,
+            Sides::Front => Back::Black,
+            Sides::Back(back) => {
+                let (mut back, more) = Material::from_desc(back, textures_cache);
+                unsupported.extend(more);
+                back.emission = None;
+                back.back = Back::Same;
+                Back::Other(Box::new(back))
+            }
+        };
+        let anisotropic = bsdf.is_some_and(|b| b.is_anisotropic());
         (
             Material {
                 bsdf,
                 emission,
                 textures,
+                back,
+                anisotropic,
             },
             unsupported,
         )
     }
 
-    /// The BSDF at a hit point, with every textured parameter read at the
-    /// hit's `uv`.
+    /// The material that scatters at `hit`: this one when the viewer (`wo`)
+    /// is in front of the shading normal, else what [`Material::back`] says
+    /// (`None` for a one-sided material seen from behind). Everything a hit
+    /// is shaded with (its BSDF, its shading frame) comes through here, so
+    /// light samples, BSDF samples and their MIS weights all see the same
+    /// side.
+    #[inline]
+    pub fn facing(&self, hit: &SurfaceHit) -> Option<&Material> {
+        if hit.front_face {
+            return Some(self);
+        }
+        match &self.back {
+            Back::Same => Some(self),
+            Back::Black => None,
+            Back::Other(back) => Some(back),
+        }
+    }
+
+    /// The BSDF at a hit point, on the side the hit sees
+    /// ([`Material::facing`]), with every textured parameter read at the
+    /// hit's `uv`; `None` where nothing scatters.
     #[inline]
     pub fn bsdf_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
-        let bsdf = self.bsdf?;
-        if !self.textures.textures_bsdf() {
+        let side = self.facing(hit)?;
+        let bsdf = side.bsdf?;
+        if !side.textures.textures_bsdf() {
             return Some(bsdf); // untextured: no call, no copy through `apply`
         }
-        Some(self.textures.apply(bsdf, hit.uv))
+        Some(side.textures.apply(bsdf, hit.uv))
     }
 
     /// The radiance emitted at texture coordinate `uv` (on the emitting
@@ -195,10 +246,12 @@ fn glass(reflectance: Vec3, transmittance: Vec3, roughness: f32, ior: f32) -> Bs
     }
 }
 
-/// The distribution a description names, with roughness `alpha`.
-fn microfacets(model: MicrofacetModel, alpha: f32) -> MicrofacetDistribution {
+/// The distribution a description names, with roughness `alpha` (its `u`
+/// along the shading frame's x, which follows dp/du when they differ).
+fn microfacets(model: MicrofacetModel, alpha: Alpha) -> MicrofacetDistribution {
+    let (alpha_x, alpha_y) = (alpha.u, alpha.v);
     match model {
-        MicrofacetModel::Beckmann => MicrofacetDistribution::beckmann(alpha),
-        MicrofacetModel::Ggx => MicrofacetDistribution::ggx(alpha),
+        MicrofacetModel::Beckmann => MicrofacetDistribution::Beckmann { alpha_x, alpha_y },
+        MicrofacetModel::Ggx => MicrofacetDistribution::Ggx { alpha_x, alpha_y },
     }
 }

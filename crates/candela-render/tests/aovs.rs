@@ -39,6 +39,7 @@ fn depth_inside_a_sphere_is_its_radius() {
     let desc = SceneDesc {
         cameras: vec![camera_at(Vec3::ZERO)],
         spheres: vec![SphereDesc {
+            axes: candela_scene::SphereDesc::Y_POLE,
             name: "room".into(),
             center: Vec3::ZERO,
             radius: 2.0,

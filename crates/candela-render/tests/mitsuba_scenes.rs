@@ -137,6 +137,7 @@ fn a_constant_environment_is_seen_in_every_direction() {
         cameras: vec![common::camera_at(Vec3::ZERO)],
         // A speck far away, so that the scene is not empty.
         spheres: vec![candela_scene::SphereDesc {
+            axes: candela_scene::SphereDesc::Y_POLE,
             name: "speck".into(),
             center: Vec3::splat(1000.0),
             radius: 1e-3,
@@ -195,7 +196,7 @@ fn the_new_bsdf_descriptions_map_to_the_renderers_bsdfs() {
     let one = Vec3::ONE;
     let (b, n) = map(BsdfDesc::RoughDielectric {
         distribution: ggx,
-        alpha: 0.3,
+        alpha: candela_scene::Alpha::isotropic(0.3),
         ior: 1.5,
         reflectance: one,
         transmittance: one,
@@ -220,9 +221,9 @@ fn the_new_bsdf_descriptions_map_to_the_renderers_bsdfs() {
     };
     assert!(matches!(map(plastic(0.0)), (Bsdf::Plastic(_), 0)));
     assert!(matches!(map(plastic(0.2)), (Bsdf::RoughPlastic(_), 0)));
-    let conductor = |alpha, eta: Vec3, k: Vec3| BsdfDesc::Conductor {
+    let conductor = |alpha: f32, eta: Vec3, k: Vec3| BsdfDesc::Conductor {
         distribution: ggx,
-        alpha,
+        alpha: candela_scene::Alpha::isotropic(alpha),
         eta,
         k,
     };

@@ -65,6 +65,7 @@ fn mixed_scene(rng: &mut Rng) -> SceneDesc {
         loc: SourceLoc::default(),
     };
     let sphere = |center: Vec3, radius: f32| SphereDesc {
+        axes: candela_scene::SphereDesc::Y_POLE,
         name: "ball".into(),
         center,
         radius,

@@ -21,6 +21,9 @@
 //!   of `wo` to know whether the path is entering (`wo.z > 0`, relative IOR
 //!   `ior`) or leaving (`wo.z < 0`, relative IOR `1 / ior`), so the caller
 //!   **must not flip** the frame for them. The safe rule: never flip.
+//!   One-sided materials (black from behind) and materials with another
+//!   BSDF on the back are decided a level up, by which BSDF the material
+//!   hands out at a hit (`Material::facing`), not here.
 //! - **Radiance transport**: the path tracer carries radiance from lights to
 //!   the camera, so refraction scales by `1/η²` with η the relative IOR
 //!   (transmitted side over incident side of the light path as traced from
@@ -246,6 +249,18 @@ impl Bsdf {
             Bsdf::Conductor { .. } => specular::MIRROR_FLAGS,
             Bsdf::Microfacet { .. } => microfacet::FLAGS,
             Bsdf::MetallicRoughness(m) => m.flags(),
+        }
+    }
+
+    /// Whether its microfacet roughness differs along the shading frame's
+    /// x and y, so the frame's tangent must follow the surface (dp/du).
+    pub fn is_anisotropic(&self) -> bool {
+        match self {
+            Bsdf::RoughGlass { distribution, .. } | Bsdf::Microfacet { distribution, .. } => {
+                let (ax, ay) = distribution.alphas();
+                ax != ay
+            }
+            _ => false,
         }
     }
 

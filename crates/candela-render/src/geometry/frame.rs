@@ -25,6 +25,22 @@ impl Frame {
         Self { x, y, z: n }
     }
 
+    /// A frame around the unit vector `n` whose +X is `tangent` made
+    /// orthogonal to `n` (Gram-Schmidt) and normalised: the shading frame of
+    /// an anisotropic BSDF, whose roughness follows the surface's dp/du.
+    /// Falls back to [`Frame::from_normal`] when `tangent` is (nearly)
+    /// parallel to `n` or not finite.
+    pub fn from_normal_and_tangent(n: Vec3, tangent: Vec3) -> Self {
+        match (tangent - n * n.dot(tangent)).try_normalize() {
+            Some(x) => Self {
+                x,
+                y: n.cross(x),
+                z: n,
+            },
+            None => Self::from_normal(n),
+        }
+    }
+
     /// World to local coordinates.
     pub fn to_local(&self, v: Vec3) -> Vec3 {
         Vec3::new(v.dot(self.x), v.dot(self.y), v.dot(self.z))

@@ -26,8 +26,8 @@ use crate::sampling::warp::{
     Parallelogram,
 };
 use crate::shading::MaterialTextures;
-use crate::shape::{gamma, sphere_uv, SurfacePoint};
-use glam::{Vec2, Vec3};
+use crate::shape::{gamma, sphere_uv_in, SurfacePoint};
+use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::PI;
 use std::sync::Arc;
 
@@ -77,6 +77,9 @@ pub struct TexturedEmission {
     /// A triangle's UVs at its three corners (the sphere's mapping is its
     /// own).
     pub uvs: [Vec2; 3],
+    /// A sphere's parameterisation axes (`SphereDesc::axes`; unused for a
+    /// triangle).
+    pub sphere_axes: Mat3,
     /// The constant radiance when there is no emission texture (an
     /// emitter with only a cut-out).
     pub radiance: Vec3,
@@ -233,7 +236,7 @@ impl AreaLight {
                 let p_error = gamma(5) * local.abs() + gamma(1) * p.abs();
                 let l = match &self.textured {
                     Some(t) => {
-                        let (su, sv) = sphere_uv(*center, p);
+                        let (su, sv) = sphere_uv_in(t.sphere_axes, *center, p);
                         t.at(Vec2::new(su, sv))
                     }
                     None => self.radiance,
@@ -296,7 +299,7 @@ impl AreaLight {
         let distance = b - disc.sqrt();
         let l = match &self.textured {
             Some(t) => {
-                let (su, sv) = sphere_uv(center, p + wi * distance);
+                let (su, sv) = sphere_uv_in(t.sphere_axes, center, p + wi * distance);
                 t.at(Vec2::new(su, sv))
             }
             None => self.radiance,

@@ -81,6 +81,7 @@ fn striped_emission() -> TexturedEmission {
     TexturedEmission {
         textures: Arc::new(textures),
         uvs: [Vec2::ZERO, Vec2::X, Vec2::Y],
+        sphere_axes: candela_scene::SphereDesc::Y_POLE,
         radiance: Vec3::ONE,
     }
 }

@@ -12,7 +12,7 @@ use crate::accel::Hit;
 use crate::geometry::Ray;
 use crate::light::AreaShape;
 use crate::shape::{self, PrimKind, PrimRef, SurfaceHit};
-use candela_scene::{InstanceDesc, MeshDesc, SceneDesc};
+use candela_scene::{InstanceDesc, MeshDesc, SceneDesc, Sides, SphereDesc};
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 /// All triangles of the scene, every instance flattened into global arrays
@@ -53,6 +53,8 @@ pub struct SphereData {
     pub radius: f32,
     /// Material index.
     pub material: u32,
+    /// Axes of its (u, v) parameterisation ([`candela_scene::SphereDesc::axes`]).
+    pub axes: Mat3,
 }
 
 /// Every primitive of the scene, by kind.
@@ -111,10 +113,13 @@ impl Geometry {
                     meshes: desc.meshes.len(),
                 })?;
             let material = inst.material.unwrap_or(mesh.material);
-            let normal_mapped = desc
-                .materials
-                .get(material)
-                .is_some_and(|m| m.textures.normal.is_some());
+            let normal_mapped = desc.materials.get(material).is_some_and(|m| {
+                let back_mapped = match &m.sides {
+                    Sides::Back(b) => b.textures.normal.is_some(),
+                    _ => false,
+                };
+                m.textures.normal.is_some() || back_mapped
+            });
             let tangents: &[Vec4] = if mesh.tangents.is_empty() && normal_mapped {
                 generated[inst.mesh]
                     .get_or_insert_with(|| mesh.generated_tangents().unwrap_or_default())
@@ -130,6 +135,7 @@ impl Geometry {
                 center: s.center,
                 radius: s.radius,
                 material: s.material as u32,
+                axes: s.axes,
             })
             .collect();
         for (kind, count) in [
@@ -356,7 +362,12 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
         PrimKind::Sphere => {
             let s = &geometry.spheres[i];
             let sp = shape::sphere_surface_point(s.center, s.radius, ray, hit.t);
-            let uv = Vec2::new(hit.b1, hit.b2);
+            // The accelerator's (u, v) are in the default axes.
+            let uv = if s.axes == SphereDesc::Y_POLE {
+                Vec2::new(hit.b1, hit.b2)
+            } else {
+                Vec2::from(shape::sphere_uv_in(s.axes, s.center, sp.p))
+            };
             (sp.p, sp.p_error, sp.n, sp.n, uv, None, s.material)
         }
     };

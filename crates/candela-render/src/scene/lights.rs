@@ -11,7 +11,7 @@ use crate::material::Material;
 use crate::sampling::warp::Parallelogram;
 use crate::shading::MaterialTextures;
 use crate::shape::{PrimKind, PrimRef};
-use candela_scene::{LightKind, SceneDesc, SpotEdge};
+use candela_scene::{LightKind, SceneDesc, SphereDesc, SpotEdge};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
@@ -48,6 +48,10 @@ pub fn build_lights(
         let textured = shared[material].as_ref().map(|textures| TexturedEmission {
             textures: textures.clone(),
             uvs: corner_uvs(geometry, prim),
+            sphere_axes: match prim.kind() {
+                PrimKind::Sphere => geometry.spheres[prim.index() as usize].axes,
+                PrimKind::Triangle => SphereDesc::Y_POLE,
+            },
             radiance,
         });
         prim_light.push((prim, lights.len() as u32));

@@ -16,6 +16,8 @@ pub mod textures;
 
 #[cfg(test)]
 mod leak_tests;
+#[cfg(test)]
+mod sides_tests;
 
 pub use textures::MaterialTextures;
 
@@ -28,23 +30,34 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::{PI, TAU};
 
 /// The frame a BSDF is evaluated in at `hit`: around the shading normal,
-/// perturbed by the material's normal map (and bent by the rule of
-/// [`normal_map`]) when it has one. Without a normal map this is exactly
+/// perturbed by the normal or bump map of the material on the side the hit
+/// sees ([`Material::facing`]) (and bent by the rule of [`normal_map`])
+/// when it has one, with its +X along dp/du when that material's BSDF is
+/// anisotropic (Mitsuba's shading frame). Otherwise this is exactly
 /// `Frame::from_normal(hit.ns)`, inlined into the caller.
 #[inline]
 pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Frame {
-    let t = &material.textures;
-    if t.normal.is_none() && t.bump.is_none() {
+    let side = material.facing(hit).unwrap_or(material);
+    let t = &side.textures;
+    if t.normal.is_none() && t.bump.is_none() && !side.anisotropic {
         return Frame::from_normal(hit.ns);
     }
-    perturbed_frame(scene, hit, material)
+    perturbed_frame(scene, hit, side)
 }
 
-/// [`shading_frame`] of a material with a normal or bump map.
+/// [`shading_frame`] of a material with a normal or bump map or an
+/// anisotropic BSDF.
 #[inline(never)]
 fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Frame {
     let t = &material.textures;
     let (dpdu, dpdv) = uv_derivatives(scene, hit);
+    let frame = |n: Vec3| {
+        if material.anisotropic {
+            Frame::from_normal_and_tangent(n, dpdu)
+        } else {
+            Frame::from_normal(n)
+        }
+    };
     let mut n = hit.ns;
     if let Some(map) = &t.normal {
         // With per-vertex tangents, (T, w · N × T) is the frame the map was
@@ -68,9 +81,9 @@ fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Fram
         n = normal_map::bumped_normal(n, dpdu, dpdv, dhdu, dhdv);
     }
     if n == hit.ns {
-        return Frame::from_normal(hit.ns);
+        return frame(hit.ns);
     }
-    Frame::from_normal(normal_map::keep_viewer_above(n, hit.ns, hit.wo))
+    frame(normal_map::keep_viewer_above(n, hit.ns, hit.wo))
 }
 
 /// Rule 2 of [`normal_map`]: a scattered direction `wi` counts only if its
@@ -126,7 +139,8 @@ pub fn sample_scatter(
 
 /// dp/du and dp/dv at `hit`: a triangle's from its corners and UVs (its
 /// barycentric parametrisation when it has no UVs or they are
-/// degenerate), a sphere's from its (u, v) = (φ/2π, θ/π) mapping.
+/// degenerate), a sphere's from its (u, v) = (φ/2π, θ/π) mapping in its
+/// own axes.
 pub fn uv_derivatives(scene: &Scene, hit: &SurfaceHit) -> (Vec3, Vec3) {
     let i = hit.prim.index() as usize;
     match hit.prim.kind() {
@@ -149,14 +163,15 @@ pub fn uv_derivatives(scene: &Scene, hit: &SurfaceHit) -> (Vec3, Vec3) {
             ((d2.y * e1 - d1.y * e2) * inv, (d1.x * e2 - d2.x * e1) * inv)
         }
         PrimKind::Sphere => {
-            // q = (sin θ cos φ, cos θ, sin θ sin φ), u = φ/2π, v = θ/π.
+            // In the sphere's axes q = (sin θ cos φ, sin θ sin φ, cos θ),
+            // u = φ/2π, v = θ/π.
             let s = &scene.geometry.spheres[i];
-            let q = (hit.p - s.center).normalize_or(Vec3::Y);
-            let (cos_t, sin_t) = (q.y, (1.0 - q.y * q.y).max(0.0).sqrt());
-            let (sin_p, cos_p) = q.z.atan2(q.x).sin_cos();
+            let q = s.axes.transpose() * (hit.p - s.center).normalize_or(s.axes.z_axis);
+            let (cos_t, sin_t) = (q.z, (1.0 - q.z * q.z).max(0.0).sqrt());
+            let (sin_p, cos_p) = q.y.atan2(q.x).sin_cos();
             (
-                Vec3::new(-sin_p, 0.0, cos_p) * (TAU * s.radius * sin_t),
-                Vec3::new(cos_t * cos_p, -sin_t, cos_t * sin_p) * (PI * s.radius),
+                s.axes * Vec3::new(-sin_p, cos_p, 0.0) * (TAU * s.radius * sin_t),
+                s.axes * Vec3::new(cos_t * cos_p, cos_t * sin_p, -sin_t) * (PI * s.radius),
             )
         }
     }

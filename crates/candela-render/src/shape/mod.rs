@@ -13,7 +13,7 @@ mod triangle4;
 pub use generate::icosphere;
 pub use hit::SurfaceHit;
 pub use prim::{PrimKind, PrimRef};
-pub use sphere::{intersect_sphere, sphere_surface_point, sphere_uv};
+pub use sphere::{intersect_sphere, sphere_surface_point, sphere_uv, sphere_uv_in};
 pub use surface::{gamma, offset_ray_origin, spawn_ray, SurfacePoint};
 pub use triangle::{
     intersect_triangle, triangle_normal, triangle_surface_point,

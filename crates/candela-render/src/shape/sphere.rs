@@ -7,7 +7,7 @@
 
 use super::surface::{gamma, SurfacePoint};
 use crate::geometry::Ray;
-use glam::Vec3;
+use glam::{Mat3, Vec3};
 
 /// Nearest root of `|o + t d - center| = radius` in `(0, t_max)`: the near
 /// one from outside, the far one from inside.
@@ -65,5 +65,21 @@ pub fn sphere_uv(center: Vec3, p: Vec3) -> (f32, f32) {
         phi
     } / std::f32::consts::TAU;
     let v = q.y.clamp(-1.0, 1.0).acos() / std::f32::consts::PI;
+    (u, v)
+}
+
+/// [`sphere_uv`] in the parameterisation of `axes` (orthonormal columns
+/// x, y, z in world space; [`candela_scene::SphereDesc::axes`]): `v = θ/π`
+/// from +z, `u = φ/2π` around it from +x toward +y. With
+/// [`candela_scene::SphereDesc::Y_POLE`] it is [`sphere_uv`].
+pub fn sphere_uv_in(axes: Mat3, center: Vec3, p: Vec3) -> (f32, f32) {
+    let q = axes.transpose() * (p - center).normalize_or(axes.z_axis);
+    let phi = q.y.atan2(q.x);
+    let u = if phi < 0.0 {
+        phi + std::f32::consts::TAU
+    } else {
+        phi
+    } / std::f32::consts::TAU;
+    let v = q.z.clamp(-1.0, 1.0).acos() / std::f32::consts::PI;
     (u, v)
 }

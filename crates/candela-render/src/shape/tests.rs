@@ -262,3 +262,35 @@ fn spawned_rays_never_rehit_their_sphere() {
         }
     }
 }
+
+#[test]
+fn sphere_uv_in_the_default_axes_is_the_accelerators_uv_and_follows_rotated_axes() {
+    use candela_scene::SphereDesc;
+    let c = Vec3::new(0.3, -1.0, 2.0);
+    let dirs = [
+        Vec3::new(0.3, 0.5, -0.8),
+        Vec3::new(-0.9, 0.1, 0.2),
+        Vec3::new(0.0, -1.0, 0.4),
+        Vec3::new(0.6, 0.2, 0.7),
+    ];
+    // Rotated 90° about x, as Mitsuba's `rotate x=1 angle=90`: its pole
+    // (local +z) is world −y, its local +y world +z.
+    let rotated = glam::Mat3::from_cols(Vec3::X, Vec3::Z, -Vec3::Y);
+    for d in dirs {
+        let p = c + 1.7 * d.normalize();
+        assert_eq!(
+            sphere_uv_in(SphereDesc::Y_POLE, c, p),
+            sphere_uv(c, p),
+            "{d}"
+        );
+        // In the rotated axes the local point is (x, z, −y) of the offset.
+        let q = d.normalize();
+        let (u, v) = sphere_uv_in(rotated, c, p);
+        let phi = q.z.atan2(q.x).rem_euclid(std::f32::consts::TAU);
+        assert!((u - phi / std::f32::consts::TAU).abs() < 1e-5, "{d}: u {u}");
+        assert!(
+            (v - (-q.y).acos() / std::f32::consts::PI).abs() < 1e-5,
+            "{d}: v {v}"
+        );
+    }
+}

@@ -113,6 +113,7 @@ pub fn ball_under_the_sky() -> Scene {
         meshes: vec![plane],
         instances: vec![candela_scene::InstanceDesc::identity(0, Default::default())],
         spheres: vec![SphereDesc {
+            axes: candela_scene::SphereDesc::Y_POLE,
             name: "ball".into(),
             center: Vec3::new(0.0, 1.0, 0.0),
             radius: 1.0,

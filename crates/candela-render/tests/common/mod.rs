@@ -26,6 +26,7 @@ pub fn inward_icosphere(levels: u32, radius: f32) -> (Vec<Vec3>, Vec<[u32; 3]>) 
 /// A material description.
 pub fn material(name: &str, bsdf: BsdfDesc, emission: Option<Vec3>) -> MaterialDesc {
     MaterialDesc {
+        sides: candela_scene::Sides::Both,
         name: name.into(),
         bsdf,
         emission,
@@ -95,6 +96,7 @@ pub fn furnace_with_glass_ball(albedo: f32, le: f32) -> SceneDesc {
         None,
     ));
     desc.spheres.push(SphereDesc {
+        axes: candela_scene::SphereDesc::Y_POLE,
         name: "ball".into(),
         center: Vec3::new(0.0, 0.0, -0.55),
         radius: 0.35,
@@ -111,6 +113,7 @@ pub fn analytic_sphere() -> SceneDesc {
         source: "analytic".into(),
         cameras: vec![camera_at(Vec3::new(0.0, 0.0, 0.3))],
         spheres: vec![SphereDesc {
+            axes: candela_scene::SphereDesc::Y_POLE,
             name: "room".into(),
             center: Vec3::ZERO,
             radius: 1.0,
@@ -289,6 +292,7 @@ pub fn glass_room() -> SceneDesc {
         ],
         spheres: vec![
             SphereDesc {
+                axes: candela_scene::SphereDesc::Y_POLE,
                 name: "glass ball".into(),
                 center: Vec3::new(0.45, -0.55, -2.3),
                 radius: 0.45,
@@ -296,6 +300,7 @@ pub fn glass_room() -> SceneDesc {
                 loc: SourceLoc::default(),
             },
             SphereDesc {
+                axes: candela_scene::SphereDesc::Y_POLE,
                 name: "clay ball".into(),
                 center: Vec3::new(-0.6, -0.65, -2.8),
                 radius: 0.35,

@@ -147,6 +147,7 @@ fn read_sphere(
         center: m.transform_point3(Vec3::ZERO),
         radius: r * scale,
         material,
+        axes: SphereDesc::Y_POLE,
         loc: ctx.loc(sphere),
     })
 }

@@ -4,6 +4,8 @@
 //! Defaults for CGL parameters the file leaves out: reflectance and
 //! transmittance 1, roughness 0, ior 1.5, alpha 0.5. A conductor's `eta` and
 //! `k`, and an emitter's `radiance`, have no sensible default and are required.
+//! Every material shades both sides of its surfaces, as path tracers
+//! reading COLLADA do (`Sides::Both`, the default grey's).
 
 use super::lenient::{self, color_or, float_or, is_cgl, Color};
 use super::numbers::vec3;

@@ -23,8 +23,32 @@ pub struct MaterialDesc {
     pub emission: Option<Vec3>,
     /// Textures that replace constant parameters, one slot per parameter.
     pub textures: TextureSlots,
+    /// Which sides of the surface scatter light, and with what.
+    pub sides: Sides,
     /// Where the material was described.
     pub loc: SourceLoc,
+}
+
+/// Which sides of a surface scatter light. The front is the side the
+/// surface's shading normal points to (its authored normals, else its
+/// winding); a path tracer that reads COLLADA, OBJ, PLY or glTF shades both
+/// sides alike, while Mitsuba 3's non-dielectric BSDFs are black from
+/// behind unless wrapped in `twosided`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Sides {
+    /// The BSDF scatters on both sides, as if the surface were turned to
+    /// face the viewer (a dielectric reads the side to tell entering from
+    /// leaving).
+    #[default]
+    Both,
+    /// Only the front scatters; seen from behind the surface is black
+    /// (Mitsuba's one-sided BSDFs).
+    Front,
+    /// The material's BSDF on the front, this one's on the back (turned to
+    /// face the viewer): Mitsuba's `twosided` with two BSDFs. Only the
+    /// back material's BSDF and textures are used (emission stays the
+    /// front's).
+    Back(Box<MaterialDesc>),
 }
 
 impl MaterialDesc {
@@ -37,6 +61,7 @@ impl MaterialDesc {
             },
             emission: None,
             textures: TextureSlots::default(),
+            sides: Sides::Both,
             loc: SourceLoc::default(),
         }
     }
@@ -274,8 +299,8 @@ pub enum BsdfDesc {
     RoughDielectric {
         /// The microfacet distribution.
         distribution: MicrofacetModel,
-        /// Roughness alpha (> 0).
-        alpha: f32,
+        /// Roughness along u and v (> 0).
+        alpha: Alpha,
         /// Index of refraction of the inside relative to the outside.
         ior: f32,
         /// Reflectance scale per channel.
@@ -314,8 +339,8 @@ pub enum BsdfDesc {
     Conductor {
         /// The microfacet distribution.
         distribution: MicrofacetModel,
-        /// Roughness alpha (0 = smooth).
-        alpha: f32,
+        /// Roughness along u and v (0 = smooth).
+        alpha: Alpha,
         /// Real part of the complex index of refraction, per channel.
         eta: Vec3,
         /// Imaginary part (absorption), per channel.
@@ -345,6 +370,36 @@ pub enum BsdfDesc {
         /// by default).
         specular_color: Vec3,
     },
+}
+
+/// The roughness α of a microfacet distribution along the two tangent
+/// directions of the surface: `u` along dp/du of its texture
+/// parameterisation (projected onto the tangent plane of the shading
+/// normal), `v` across it. Equal: isotropic, and the axes do not matter.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Alpha {
+    /// Roughness along dp/du.
+    pub u: f32,
+    /// Roughness across dp/du (along the shading frame's second tangent).
+    pub v: f32,
+}
+
+impl Alpha {
+    /// The same roughness in every direction.
+    pub const fn isotropic(alpha: f32) -> Self {
+        Self { u: alpha, v: alpha }
+    }
+
+    /// Whether the roughness differs between the two directions.
+    pub fn is_anisotropic(&self) -> bool {
+        self.u != self.v
+    }
+
+    /// Whether the surface is rough at all (both α positive); 0 means a
+    /// smooth (delta) model.
+    pub fn is_rough(&self) -> bool {
+        self.u > 0.0 && self.v > 0.0
+    }
 }
 
 /// Microfacet normal distributions.

@@ -22,10 +22,11 @@ mod tangents;
 
 pub use camera::{CameraDesc, Projection};
 pub use material::{
-    BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, TextureRef, TextureSlot, TextureSlots,
+    Alpha, BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, Sides, TextureRef, TextureSlot,
+    TextureSlots,
 };
 
-use glam::{Mat4, Vec2, Vec3, Vec4};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
 
 /// A position in a source file (1-based line and column).
@@ -149,8 +150,20 @@ pub struct SphereDesc {
     pub radius: f32,
     /// Index into [`SceneDesc::materials`].
     pub material: usize,
+    /// The axes of its (u, v) parameterisation in world space (orthonormal
+    /// columns x, y, z): v = θ/π from the pole +z, u = φ/2π around it from
+    /// +x toward +y. Texture lookups and the tangent of anisotropic BSDFs
+    /// (dp/du) follow them. [`SphereDesc::Y_POLE`] unless the format says
+    /// otherwise (Mitsuba: the shape's `to_world` rotation).
+    pub axes: Mat3,
     /// Where the sphere was instanced.
     pub loc: SourceLoc,
+}
+
+impl SphereDesc {
+    /// Candela's own parameterisation (COLLADA, CS184): the pole along +Y,
+    /// φ measured from +X toward +Z.
+    pub const Y_POLE: Mat3 = Mat3::from_cols(Vec3::X, Vec3::Z, Vec3::Y);
 }
 
 /// A light source that is not emissive geometry.

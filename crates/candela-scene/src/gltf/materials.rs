@@ -15,12 +15,14 @@
 //! without ordering transparent surfaces). Without a base colour texture
 //! the factor's alpha is a constant opacity (`opacity_constant`), read the
 //! same way. Occlusion textures are not read:
-//! a path tracer computes occlusion itself.
+//! a path tracer computes occlusion itself. Every material shades both
+//! sides ([`Sides::Both`]): `doubleSided: false` lets a rasteriser cull
+//! back faces, which a path tracer has no use for.
 
 use super::accessors::Buffers;
 use super::textures::texture_ref;
 use super::Ctx;
-use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, TextureSlot};
+use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, Sides, TextureSlot};
 use crate::error::LoadError;
 use glam::Vec3;
 use gltf::material::AlphaMode;
@@ -75,6 +77,9 @@ pub(super) fn read_material(
         bsdf,
         emission: (emissive.max_element() > 0.0).then_some(emissive),
         textures: Default::default(),
+        // glTF's doubleSided asks rasterisers to cull back faces; a path
+        // tracer shades both sides either way.
+        sides: Sides::Both,
         loc: Default::default(),
     };
     let mut slot = |slot: TextureSlot,

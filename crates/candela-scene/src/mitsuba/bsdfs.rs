@@ -3,23 +3,31 @@
 //! | Mitsuba | Candela description |
 //! |---|---|
 //! | `diffuse` | `Diffuse` (a `reflectance` texture fills the colour slot) |
-//! | `twosided` | its inner BSDF (Candela shades both sides anyway) |
+//! | `twosided` | its BSDF with [`Sides::Both`]; with two BSDFs, the first with [`Sides::Back`] of the second |
 //! | `dielectric` | `Glass`, ior = int_ior / ext_ior (numbers or names) |
 //! | `thindielectric` | `ThinDielectric` |
-//! | `roughdielectric` | `RoughDielectric` (alpha, beckmann or ggx) |
-//! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth), `material` presets (the measured metals of [`crate::metals`]) or eta/k; a smooth `none` with `specular_reflectance` is a `Mirror` of that reflectance |
+//! | `roughdielectric` | `RoughDielectric` (alpha, or alpha_u/alpha_v; beckmann or ggx) |
+//! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth, alpha_u/alpha_v anisotropic), `material` presets (the measured metals of [`crate::metals`]) or eta/k; a smooth `none` with `specular_reflectance` is a `Mirror` of that reflectance |
 //! | `plastic`, `roughplastic` | `Plastic` (alpha 0 when smooth), with `nonlinear` |
 //! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the bump (height) or normal-map slot |
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot |
 //!
 //! Mitsuba BSDFs Candela lacks (`principled`, `blendbsdf`, `null`, ...) are
 //! replaced by the closest one and reported once.
+//!
+//! Sides: Mitsuba 3 evaluates every BSDF but the ones that transmit as
+//! one-sided, black when `wo` or `wi` is behind the shading normal
+//! (`flip_normals` turns that normal over); such BSDFs get
+//! [`Sides::Front`] (and so does the diffuse 0.5 a shape gets when it
+//! names no BSDF). `twosided` turns the frame over behind the surface and
+//! evaluates its first BSDF there, or its second when it has two.
 
 use super::doc::{elements, Doc, XNode};
 use super::values::{boolean, constant_color, float_of, string};
 use super::{tables, Builder};
 use crate::desc::{
-    BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, TextureRef, TextureSlot, TextureSlots,
+    Alpha, BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, Sides, TextureRef, TextureSlot,
+    TextureSlots,
 };
 use crate::error::{ErrorKind, LoadError};
 use glam::Vec3;
@@ -82,6 +90,7 @@ impl Builder {
                         bsdf: BsdfDesc::Mirror { reflectance: scale },
                         emission: None,
                         textures,
+                        sides: Sides::Front,
                         loc: doc.loc(node),
                     });
                 }
@@ -102,7 +111,7 @@ impl Builder {
                     alpha: if rough {
                         self.alpha(doc, node, &mut textures)?
                     } else {
-                        0.0
+                        Alpha::isotropic(0.0)
                     },
                     eta,
                     k,
@@ -133,7 +142,7 @@ impl Builder {
                     specular: self.constant(doc, node, "specular_reflectance", Vec3::ONE)?,
                     ior: int / ext,
                     alpha: if rough {
-                        self.alpha(doc, node, &mut textures)?
+                        self.isotropic_alpha(doc, node, &mut textures)?
                     } else {
                         0.0
                     },
@@ -186,6 +195,7 @@ impl Builder {
             bsdf,
             emission: None,
             textures,
+            sides: sides_of(doc, node, &kind)?,
             loc: doc.loc(node),
         })
     }
@@ -199,6 +209,7 @@ impl Builder {
         name: String,
     ) -> Result<MaterialDesc, LoadError> {
         let mut inner: Option<MaterialDesc> = None;
+        let mut back: Option<MaterialDesc> = None;
         let mut extra = 0;
         for c in elements(node) {
             let m = match c.tag_name().name() {
@@ -214,6 +225,8 @@ impl Builder {
             };
             if inner.is_none() {
                 inner = Some(m);
+            } else if back.is_none() {
+                back = Some(m);
             } else {
                 extra += 1;
             }
@@ -225,17 +238,16 @@ impl Builder {
                 format!("\"{kind}\" has no inner <bsdf>"),
             ));
         };
-        if extra > 0 && kind != "twosided" {
+        if kind == "twosided" {
+            if extra > 0 {
+                self.warn(doc, node, "twosided: BSDFs after the second are ignored")?;
+            }
+            self.two_sides(doc, node, &mut m, back)?;
+        } else if back.is_some() {
             self.warn(
                 doc,
                 node,
                 format!("\"{kind}\": only the first inner BSDF is used"),
-            )?;
-        } else if extra > 0 {
-            self.warn(
-                doc,
-                node,
-                "twosided with two BSDFs: the front one is used on both sides",
             )?;
         }
         match kind {
@@ -268,6 +280,43 @@ impl Builder {
         Ok(m)
     }
 
+    /// Makes `front` (a `twosided`'s first BSDF) scatter on both sides:
+    /// with itself turned over on the back, or with `back`. Mitsuba
+    /// refuses to nest a BSDF that transmits; such a one is kept as it is
+    /// (a dielectric is two-sided already) and reported.
+    fn two_sides(
+        &mut self,
+        doc: &Doc,
+        node: XNode,
+        front: &mut MaterialDesc,
+        back: Option<MaterialDesc>,
+    ) -> Result<(), LoadError> {
+        let transmits = |m: &MaterialDesc| {
+            matches!(
+                m.bsdf,
+                BsdfDesc::Glass { .. }
+                    | BsdfDesc::ThinDielectric { .. }
+                    | BsdfDesc::RoughDielectric { .. }
+                    | BsdfDesc::Refraction { .. }
+            )
+        };
+        if transmits(front) || back.as_ref().is_some_and(transmits) {
+            return self.warn(
+                doc,
+                node,
+                "twosided around a BSDF that transmits (Mitsuba refuses it): the inner BSDF is used as it is",
+            );
+        }
+        front.sides = match back {
+            Some(mut b) => {
+                b.sides = Sides::Both;
+                Sides::Back(Box::new(b))
+            }
+            None => Sides::Both,
+        };
+        Ok(())
+    }
+
     /// The image of a bump or normal map (a `<texture>` or `<ref>` child).
     fn map_texture(&mut self, doc: &Doc, node: XNode) -> Result<Option<TextureRef>, LoadError> {
         for c in elements(node) {
@@ -285,6 +334,14 @@ impl Builder {
             }
         }
         Ok(None)
+    }
+
+    /// Mitsuba's BSDF of a shape that names none: diffuse 0.5, one-sided.
+    pub(super) fn default_diffuse() -> MaterialDesc {
+        MaterialDesc {
+            sides: Sides::Front,
+            ..MaterialDesc::default_grey()
+        }
     }
 
     /// The material of the BSDF named `id`.
@@ -407,27 +464,66 @@ impl Builder {
         Ok(c)
     }
 
-    /// Roughness `alpha` (default 0.1); a texture goes to the roughness slot.
+    /// Roughness `alpha` (default 0.1), or `alpha_u` and `alpha_v` (along
+    /// the shading frame's dp/du and across it); a texture for `alpha` goes
+    /// to the roughness slot, textures for `alpha_u`/`alpha_v` are reported
+    /// (their constants used).
     fn alpha(
         &mut self,
         doc: &Doc,
         node: XNode,
         textures: &mut TextureSlots,
-    ) -> Result<f32, LoadError> {
-        if doc.prop(node, "alpha_u")?.is_some() {
-            let u = self.color(doc, node, "alpha_u", Vec3::splat(0.1))?.0.x;
-            let v = self.color(doc, node, "alpha_v", Vec3::splat(0.1))?.0.x;
-            self.warn(
-                doc,
-                node,
-                "anisotropic roughness rendered isotropic (the mean alpha)",
-            )?;
-            return check_alpha(doc, node, 0.5 * (u + v));
+    ) -> Result<Alpha, LoadError> {
+        if doc.prop(node, "alpha_u")?.is_some() || doc.prop(node, "alpha_v")?.is_some() {
+            let u = self.constant(doc, node, "alpha_u", Vec3::splat(0.1))?.x;
+            let v = self.constant(doc, node, "alpha_v", Vec3::splat(0.1))?.x;
+            return Ok(Alpha {
+                u: check_alpha(doc, node, u)?,
+                v: check_alpha(doc, node, v)?,
+            });
         }
         let (a, tex) = self.color(doc, node, "alpha", Vec3::splat(0.1))?;
         set(textures, TextureSlot::Roughness, tex);
-        check_alpha(doc, node, a.x)
+        check_alpha(doc, node, a.x).map(Alpha::isotropic)
     }
+
+    /// [`Self::alpha`] for a model with one roughness (`roughplastic`):
+    /// anisotropic values are averaged and reported.
+    fn isotropic_alpha(
+        &mut self,
+        doc: &Doc,
+        node: XNode,
+        textures: &mut TextureSlots,
+    ) -> Result<f32, LoadError> {
+        let alpha = self.alpha(doc, node, textures)?;
+        if alpha.is_anisotropic() {
+            self.warn(
+                doc,
+                node,
+                "anisotropic roughness on a plastic rendered isotropic (the mean alpha)",
+            )?;
+        }
+        Ok(0.5 * (alpha.u + alpha.v))
+    }
+}
+
+/// The sides a Mitsuba BSDF of type `kind` scatters on: both for those
+/// that transmit (the dielectrics, hair, `principledthin`, a `principled`
+/// with `spec_trans` > 0), the front only for every other one (black from
+/// behind, as Mitsuba 3 evaluates them).
+fn sides_of(doc: &Doc, node: XNode, kind: &str) -> Result<Sides, LoadError> {
+    let transmits = match kind {
+        "dielectric" | "thindielectric" | "roughdielectric" | "hair" | "null" => true,
+        // principledthin is two-sided whatever its parameters.
+        "principledthin" => true,
+        "principled" => match doc.prop(node, "spec_trans")? {
+            None => false,
+            Some(p) if p.tag_name().name() == "float" => float_of(doc, p)? > 0.0,
+            Some(_) => true, // a texture: transmits somewhere
+        },
+        _ => false,
+    };
+    Ok(if transmits { Sides::Both } else { Sides::Front })
 }
 
 fn check_alpha(doc: &Doc, node: XNode, alpha: f32) -> Result<f32, LoadError> {

@@ -9,9 +9,11 @@ use super::emitters::area_radiance;
 use super::transform::to_world;
 use super::values::{boolean, float, point};
 use super::{tessellate, Builder};
-use crate::desc::{InstanceDesc, MaterialDesc, MeshDesc, SphereDesc};
+use crate::desc::{
+    BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, Sides, SphereDesc, TextureSlots,
+};
 use crate::error::{ErrorKind, LoadError};
-use glam::{Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec3};
 
 /// A shape of a group, in the group's space.
 #[derive(Clone, Debug)]
@@ -111,15 +113,12 @@ impl Builder {
                 format!("sphere radius {radius} is not positive"),
             ));
         }
+        let mut material = self.shape_material(doc, node)?;
         if boolean(doc, node, "flip_normals", false)? {
-            self.warn(
-                doc,
-                node,
-                "flip_normals on a sphere is not supported (ignored)",
-            )?;
+            material = self.inside_out(doc, node, material)?;
         }
         let transform = checked_transform(doc, node)?;
-        let Some((center, radius)) = place_sphere(transform, center, radius) else {
+        let Some((center, radius, rotation)) = place_sphere(transform, center, radius) else {
             return Err(doc.err(
                 node,
                 ErrorKind::BadValue,
@@ -130,7 +129,9 @@ impl Builder {
             name,
             center,
             radius,
-            material: self.shape_material(doc, node)?,
+            material,
+            // Mitsuba's sphere: the pole along its local +z, u around it.
+            axes: rotation,
             loc: doc.loc(node),
         };
         match group {
@@ -197,7 +198,9 @@ impl Builder {
                     loc: doc.loc(node),
                 }),
                 GroupItem::Sphere(s) => {
-                    let Some((center, radius)) = place_sphere(transform, s.center, s.radius) else {
+                    let Some((center, radius, rotation)) =
+                        place_sphere(transform, s.center, s.radius)
+                    else {
                         return Err(doc.err(
                             node,
                             ErrorKind::BadValue,
@@ -207,6 +210,7 @@ impl Builder {
                     self.scene.spheres.push(SphereDesc {
                         center,
                         radius,
+                        axes: rotation * s.axes,
                         loc: doc.loc(node),
                         ..s
                     });
@@ -216,8 +220,8 @@ impl Builder {
         Ok(())
     }
 
-    /// The material of a shape: its `<bsdf>` or `<ref>` (default grey
-    /// diffuse), plus the radiance of its area `<emitter>`.
+    /// The material of a shape: its `<bsdf>` or `<ref>` (default one-sided
+    /// grey diffuse), plus the radiance of its area `<emitter>`.
     fn shape_material(&mut self, doc: &Doc, node: XNode) -> Result<usize, LoadError> {
         let (mut inline, mut named, mut emission) = (None, None, None);
         for c in elements(node) {
@@ -247,15 +251,79 @@ impl Builder {
                 if let Some(i) = self.default_material {
                     return Ok(i);
                 }
-                let i = self.push_material(MaterialDesc::default_grey());
+                let i = self.push_material(Self::default_diffuse());
                 self.default_material = Some(i);
                 return Ok(i);
             }
-            None => MaterialDesc::default_grey(),
+            None => Self::default_diffuse(),
         };
         Ok(self.push_material(MaterialDesc {
             emission,
             ..material
+        }))
+    }
+
+    /// The material of a sphere whose normals `flip_normals` turns
+    /// inward, as one on Candela's outward-facing sphere: what Mitsuba
+    /// shows in front of the flipped normal Candela shows behind its own,
+    /// so the sides swap (a one-sided BSDF becomes black outside and the
+    /// BSDF, turned over, inside). A two-sided BSDF needs nothing, except a
+    /// dielectric (inside and outside would swap: reported, kept), and
+    /// emission stays outward (reported).
+    fn inside_out(&mut self, doc: &Doc, node: XNode, i: usize) -> Result<usize, LoadError> {
+        let m = self.scene.materials[i].clone();
+        if m.emission.is_some() {
+            self.warn(
+                doc,
+                node,
+                "flip_normals on an emitting sphere: it still emits outward",
+            )?;
+        }
+        let (front, back) = match m.sides {
+            Sides::Both => {
+                if matches!(
+                    m.bsdf,
+                    BsdfDesc::Glass { .. }
+                        | BsdfDesc::RoughDielectric { .. }
+                        | BsdfDesc::ThinDielectric { .. }
+                        | BsdfDesc::Refraction { .. }
+                ) {
+                    self.warn(
+                        doc,
+                        node,
+                        "flip_normals on a dielectric sphere is not supported (inside and outside kept)",
+                    )?;
+                }
+                return Ok(i);
+            }
+            Sides::Front => {
+                // Cut-outs stay with the surface, on both sides.
+                let cutout = TextureSlots {
+                    opacity: m.textures.opacity.clone(),
+                    opacity_cutoff: m.textures.opacity_cutoff,
+                    opacity_constant: m.textures.opacity_constant,
+                    ..TextureSlots::default()
+                };
+                let black = (BsdfDesc::Black, cutout);
+                (black, (m.bsdf.clone(), m.textures.clone()))
+            }
+            Sides::Back(ref b) => (
+                (b.bsdf.clone(), b.textures.clone()),
+                (m.bsdf.clone(), m.textures.clone()),
+            ),
+        };
+        let back = MaterialDesc {
+            bsdf: back.0,
+            textures: back.1,
+            emission: None,
+            sides: Sides::Both,
+            ..m.clone()
+        };
+        Ok(self.push_material(MaterialDesc {
+            bsdf: front.0,
+            textures: front.1,
+            sides: Sides::Back(Box::new(back)),
+            ..m
         }))
     }
 
@@ -287,12 +355,18 @@ fn checked_transform(doc: &Doc, node: XNode) -> Result<Mat4, LoadError> {
     Ok(m)
 }
 
-/// A sphere's centre and radius after `m`, or `None` if `m` does not scale
-/// uniformly (within 0.1 %).
-fn place_sphere(m: Mat4, center: Vec3, radius: f32) -> Option<(Vec3, f32)> {
+/// A sphere's centre and radius after `m`, with `m`'s rotation (its
+/// columns normalised), or `None` if `m` does not scale uniformly (within
+/// 0.1 %).
+fn place_sphere(m: Mat4, center: Vec3, radius: f32) -> Option<(Vec3, f32, Mat3)> {
     let scales = [m.x_axis, m.y_axis, m.z_axis].map(|c| c.truncate().length());
     let mean = (scales[0] + scales[1] + scales[2]) / 3.0;
     let uniform = scales.iter().all(|s| (s - mean).abs() <= 1e-3 * mean)
         && m.x_axis.truncate().dot(m.y_axis.truncate()).abs() <= 1e-3 * mean * mean;
-    uniform.then(|| (m.transform_point3(center), radius * mean))
+    let rotation = Mat3::from_cols(
+        m.x_axis.truncate() / scales[0],
+        m.y_axis.truncate() / scales[1],
+        m.z_axis.truncate() / scales[2],
+    );
+    uniform.then(|| (m.transform_point3(center), radius * mean, rotation))
 }

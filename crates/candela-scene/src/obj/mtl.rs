@@ -18,6 +18,8 @@
 //!   slots, `map_Bump`/`bump` the bump (height) slot, `norm` the
 //!   normal-map slot and `map_d` the
 //!   opacity slot. `Ka` is meaningless for a path tracer and skipped.
+//! - every material shades both sides of its faces (`Sides::Both`), as
+//!   path tracers reading OBJ do.
 
 use super::statements::{error, number, statements, Statement};
 use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, SourceLoc, TextureRef, TextureSlot};

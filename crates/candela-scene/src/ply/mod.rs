@@ -7,7 +7,8 @@
 //! (also `s t` and `texture_u texture_v`); the `face` element's
 //! `vertex_indices` (or `vertex_index`) list, fan-triangulated. Other
 //! properties and elements are skipped and reported once by name. A PLY
-//! file carries no materials: the mesh gets the default grey one.
+//! file carries no materials: the mesh gets the default grey one, which
+//! shades both sides.
 
 mod body;
 mod header;
