@@ -18,12 +18,14 @@
 
 mod camera;
 mod material;
+mod perturbation;
 mod tangents;
 
 pub use camera::{CameraDesc, Projection};
 pub use material::{
     BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, TextureRef, TextureSlot, TextureSlots,
 };
+pub use perturbation::{AwayFromViewer, PerturbationRules, TangentFrame};
 
 use glam::{Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
