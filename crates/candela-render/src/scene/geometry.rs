@@ -12,7 +12,7 @@ use crate::accel::Hit;
 use crate::geometry::Ray;
 use crate::light::AreaShape;
 use crate::shape::{self, PrimKind, PrimRef, SurfaceHit};
-use candela_scene::{InstanceDesc, MeshDesc, SceneDesc};
+use candela_scene::{InstanceDesc, MeshDesc, SceneDesc, TangentFrame};
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 /// All triangles of the scene, every instance flattened into global arrays
@@ -111,10 +111,10 @@ impl Geometry {
                     meshes: desc.meshes.len(),
                 })?;
             let material = inst.material.unwrap_or(mesh.material);
-            let normal_mapped = desc
-                .materials
-                .get(material)
-                .is_some_and(|m| m.textures.normal.is_some());
+            let normal_mapped = desc.materials.get(material).is_some_and(|m| {
+                m.textures.normal.is_some()
+                    && m.textures.perturbation.tangent_frame == TangentFrame::VertexTangents
+            });
             let tangents: &[Vec4] = if mesh.tangents.is_empty() && normal_mapped {
                 generated[inst.mesh]
                     .get_or_insert_with(|| mesh.generated_tangents().unwrap_or_default())
