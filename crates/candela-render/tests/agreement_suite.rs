@@ -12,8 +12,11 @@
 //! cannot connect through), rough glass and rough gold, rough plastic and
 //! conductors (the Mitsuba boxes), smooth shading normals on a dense mesh
 //! (`CBbunny`), an environment map (the ball under the sky), lights at
-//! infinity together with delta lights (the glass room), a thin lens, and
-//! textured emission behind stochastic cut-outs (the textured lamp).
+//! infinity together with delta lights (the glass room), a thin lens,
+//! textured emission behind stochastic cut-outs (the textured lamp), and
+//! Mitsuba's normal and bump maps, whose bump shadowing is not reciprocal
+//! (tex-maps: light and camera subpaths must attenuate the same side; its
+//! normals are bent rather than mirrored there, see `tex_maps_bent`).
 //!
 //! `cargo test --test agreement_suite` runs the CI table (about a minute on
 //! two cores); `cargo test --test agreement_suite -- --ignored` runs the
@@ -150,6 +153,14 @@ fn ci_cases() -> Vec<Case> {
             spp: 8,
             excluded: &[],
             seed: 9,
+        },
+        Case {
+            name: "tex-maps, normals bent (Mitsuba normal and bump maps, bump shadowing, masks)",
+            scene: tex_maps_bent,
+            max_depth: 3,
+            spp: 8,
+            excluded: &[],
+            seed: 14,
         },
     ]
 }

@@ -14,18 +14,23 @@
 //!   for bit as without one, with the triangles' own tangent frames and
 //!   with per-vertex tangents alike;
 //! - **a constant opacity** (glTF's alpha without a texture): 0.25 blended
-//!   lets 0.75 of the sky through, below a mask's cutoff all of it.
+//!   lets 0.75 of the sky through, below a mask's cutoff all of it; 0.3
+//!   (Mitsuba's `mask`) lets 0.7 of the shadow rays that cross it through
+//!   (a binomial bound).
 //!
 //! Means are checked against independent batches (4.5 standard errors,
 //! ~5e-4 two-sided with 15 degrees of freedom).
 
 mod common;
 
+use candela_bvh::TraversalStats;
 use candela_image::{write_exr, ExrLayers, RgbImage};
 use candela_render::camera::framing::CameraMode;
+use candela_render::geometry::Ray;
 use candela_render::integrator::{IntegratorSettings, LightingMode};
 use candela_render::light::{EnvironmentMap, EnvironmentOptions};
 use candela_render::render::{render, RenderSettings};
+use candela_render::sampling::{Sampler, SamplerKind};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{
     BsdfDesc, ColorSpace, InstanceDesc, MaterialDesc, MeshDesc, SceneDesc, TextureRef,
@@ -224,4 +229,40 @@ fn a_flat_normal_map_renders_bit_for_bit_as_none() {
     assert!(a.pixels().iter().any(|p| p[0] > 0.0), "the quad is lit");
     assert_eq!(a.pixels(), render_with(mapped.clone(), false).pixels());
     assert_eq!(a.pixels(), render_with(mapped, true).pixels());
+}
+
+#[test]
+fn a_constant_opacity_lets_its_complement_of_shadow_rays_through() {
+    // Mitsuba's `mask` with a constant opacity p (glTF's constant alpha
+    // too): each shadow ray that crosses the quad passes with probability
+    // 1 − p, decided per ray. Binomial bound: 4.5 standard errors.
+    let p = 0.3f64;
+    let mut thin = black();
+    thin.textures.opacity_constant = Some(p as f32);
+    let scene = build(&view_filling(thin), false);
+    // Segments from in front of the quad (z = −0.5) to behind it
+    // (z = −1.5), crossing it well inside its edges (|x|, |y| < 0.58).
+    let half = 0.25;
+    let mut sampler = Sampler::new(SamplerKind::Independent, 29);
+    let n = 20_000u32;
+    let mut passed = 0u32;
+    for k in 0..n {
+        sampler.start_pixel_sample(0, 0, k);
+        let (a, b) = (sampler.next_2d(), sampler.next_2d());
+        let from = Vec3::new(half * (2.0 * a.x - 1.0), half * (2.0 * a.y - 1.0), -0.5);
+        let to = Vec3::new(half * (2.0 * b.x - 1.0), half * (2.0 * b.y - 1.0), -1.5);
+        let mut ray = Ray::new(from, (to - from).normalize());
+        ray.t_max = (to - from).length();
+        if !scene.occluded_visible(&ray, &mut TraversalStats::default()) {
+            passed += 1;
+        }
+    }
+    let fraction = f64::from(passed) / f64::from(n);
+    let sigma = (p * (1.0 - p) / f64::from(n)).sqrt();
+    assert!(
+        (fraction - (1.0 - p)).abs() < 4.5 * sigma,
+        "{fraction} of shadow rays passed, expected {} ± {}",
+        1.0 - p,
+        4.5 * sigma
+    );
 }

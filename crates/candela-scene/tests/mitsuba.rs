@@ -5,8 +5,8 @@
 //! Malformed files are in `tests/malformed/` (`*-mitsuba-*.xml`).
 
 use candela_scene::{
-    load, Alpha, BsdfDesc, EnvironmentDesc, FilterHint, LightKind, LoadOptions, Loaded,
-    MicrofacetModel, Projection, SpotEdge,
+    load, Alpha, BsdfDesc, ColorSpace, EnvironmentDesc, FilterHint, LightKind, LoadOptions, Loaded,
+    MicrofacetModel, PerturbationRules, Projection, SpotEdge,
 };
 use glam::Vec3;
 use proptest::prelude::*;
@@ -623,3 +623,56 @@ fn a_spot_fades_from_its_beam_width_to_its_cutoff() {
         ]
     );
 }
+
+#[test]
+fn normal_bump_and_mask_wrappers_carry_mitsubas_rules() {
+    // bumpmap's `scale` multiplies the height; both maps take Mitsuba's
+    // shading-frame rules (use_shadowing_function read, true by default);
+    // a mask's constant opacity is kept (a colour by its luminance).
+    let dir = candela_testkit::TempDir::new("mitsuba-maps");
+    std::fs::write(dir.join("h.png"), TINY_PNG).unwrap();
+    let path = dir.join("maps.xml");
+    let body = r#"<scene version="3.0.0">
+    <shape type="rectangle"><bsdf type="bumpmap">
+        <texture type="bitmap"><string name="filename" value="h.png"/><boolean name="raw" value="true"/></texture>
+        <float name="scale" value="0.25"/><bsdf type="diffuse"/></bsdf></shape>
+    <shape type="rectangle"><bsdf type="normalmap">
+        <texture type="bitmap" name="normalmap"><string name="filename" value="h.png"/><boolean name="raw" value="true"/></texture>
+        <boolean name="use_shadowing_function" value="false"/><bsdf type="diffuse"/></bsdf></shape>
+    <shape type="rectangle"><bsdf type="mask"><float name="opacity" value="0.3"/><bsdf type="diffuse"/></bsdf></shape>
+    <shape type="rectangle"><bsdf type="mask"><rgb name="opacity" value="0.2, 0.5, 0.9"/><bsdf type="diffuse"/></bsdf></shape>
+    <shape type="rectangle"><bsdf type="diffuse"/></shape>
+</scene>"#;
+    std::fs::write(&path, body).unwrap();
+    let l = load(&path, &strict()).unwrap();
+    let m = &l.scene.materials;
+    let bump = m[0].textures.bump.as_ref().expect("bump slot");
+    assert_eq!(bump.scale, 0.25);
+    assert_eq!(bump.color_space, ColorSpace::Linear, "raw");
+    assert_eq!(m[0].textures.perturbation, PerturbationRules::MITSUBA);
+    assert!(m[1].textures.normal.is_some());
+    assert_eq!(
+        m[1].textures.perturbation,
+        PerturbationRules {
+            shadow_terminator: false,
+            ..PerturbationRules::MITSUBA
+        }
+    );
+    assert_eq!(m[2].textures.opacity_constant, Some(0.3));
+    let lum = 0.2126 * 0.2 + 0.7152 * 0.5 + 0.0722 * 0.9;
+    let got = m[3].textures.opacity_constant.expect("rgb opacity");
+    assert!((got - lum).abs() < 1e-6, "{got} vs {lum}");
+    // A plain BSDF keeps the default (glTF's) rules and full opacity.
+    assert_eq!(m[4].textures.perturbation, PerturbationRules::default());
+    assert_eq!(m[4].textures.opacity_constant, None);
+    assert!(l.report.is_empty(), "{}", l.report);
+}
+
+/// A 1 × 1 grey PNG.
+const TINY_PNG: &[u8] = &[
+    0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52,
+    0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x00, 0x00, 0x00, 0x00, 0x3a, 0x7e, 0x9b,
+    0x55, 0x00, 0x00, 0x00, 0x0a, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x68, 0x00, 0x00, 0x00,
+    0x82, 0x00, 0x81, 0x77, 0xcd, 0x72, 0xb6, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae,
+    0x42, 0x60, 0x82,
+];

@@ -10,7 +10,7 @@
 use super::record::{HemisphereEvent, LightSampleEvent, PathRecorder};
 use super::ThreadContext;
 use crate::bsdf::Bsdf;
-use crate::geometry::{Frame, Ray};
+use crate::geometry::Ray;
 use crate::light::{LightContext, LightSample, LightSelector};
 use crate::sampling::warp::{
     square_to_uniform_hemisphere, square_to_uniform_sphere, uniform_hemisphere_pdf,
@@ -18,7 +18,7 @@ use crate::sampling::warp::{
 };
 use crate::sampling::Sampler;
 use crate::scene::Scene;
-use crate::shading::{scatter_allowed, scatter_allowed_given};
+use crate::shading::{scatter_allowed, scatter_allowed_given, ShadingFrame};
 use crate::shape::SurfaceHit;
 use glam::{Vec2, Vec3};
 
@@ -95,7 +95,7 @@ pub fn light_context(hit: &SurfaceHit, bsdf: &Bsdf) -> LightContext {
 pub fn estimate_direct<R: PathRecorder>(
     scene: &Scene,
     hit: &SurfaceHit,
-    frame: &Frame,
+    frame: &ShadingFrame,
     wo: Vec3,
     bsdf: &Bsdf,
     receiver: &LightContext,
@@ -181,7 +181,7 @@ pub fn estimate_direct<R: PathRecorder>(
 fn estimate_hemisphere<R: PathRecorder>(
     scene: &Scene,
     hit: &SurfaceHit,
-    frame: &Frame,
+    frame: &ShadingFrame,
     wo: Vec3,
     bsdf: &Bsdf,
     samples: u32,
@@ -206,8 +206,8 @@ fn estimate_hemisphere<R: PathRecorder>(
             let w = if wo.z < 0.0 { -local } else { local };
             (w, uniform_hemisphere_pdf(local))
         };
-        let f = bsdf.f(wo, wi_local);
         let wi = frame.to_world(wi_local);
+        let f = bsdf.f(wo, wi_local) * frame.shadowing(wi);
         let mut event = HemisphereEvent {
             wi,
             pdf,
@@ -290,7 +290,7 @@ impl SpawnOrigins {
 struct Vertex<'a> {
     scene: &'a Scene,
     hit: &'a SurfaceHit,
-    frame: &'a Frame,
+    frame: &'a ShadingFrame,
     bsdf: &'a Bsdf,
     /// Toward the viewer, in the local frame.
     wo: Vec3,
@@ -352,7 +352,7 @@ impl Vertex<'_> {
         if !scatter_allowed_given(wi_dot_ng, self.wo, wi) {
             return Vec3::ZERO;
         }
-        let f = bsdf.f(self.wo, wi);
+        let f = bsdf.f(self.wo, wi) * self.frame.shadowing(s.wi);
         event.f = f;
         if f == Vec3::ZERO {
             return Vec3::ZERO;

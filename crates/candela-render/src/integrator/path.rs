@@ -28,12 +28,12 @@ use super::direct::{
 use super::record::{EmissionEvent, PathEnd, PathRecorder, ScatterEvent};
 use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::Bsdf;
-use crate::geometry::{Frame, Ray};
+use crate::geometry::Ray;
 use crate::light::{LightContext, LightSelection, LightSelector};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::settings::ROULETTE_THRESHOLD;
-use crate::shading::{sample_scatter, shading_frame, NoScatter};
+use crate::shading::{sample_scatter, shading_frame, NoScatter, ShadingFrame};
 use crate::shape::SurfaceHit;
 use glam::Vec3;
 use std::ops::RangeInclusive;
@@ -178,7 +178,7 @@ pub fn path_radiance<R: PathRecorder>(
             Err(NoScatter::WrongSide) => break PathEnd::WrongSide,
         };
         let transmits = s.flags.is_transmission();
-        beta *= s.f * s.wi.z.abs() / s.pdf;
+        beta *= s.f * (frame.shadowing(wi) * s.wi.z.abs() / s.pdf);
         rec.scatter(&ScatterEvent {
             sample: &s,
             wi,
@@ -222,7 +222,7 @@ pub fn path_radiance<R: PathRecorder>(
 fn direct_at_vertex<R: PathRecorder>(
     scene: &Scene,
     hit: &SurfaceHit,
-    frame: &Frame,
+    frame: &ShadingFrame,
     wo: Vec3,
     bsdf: &Bsdf,
     receiver: &LightContext,

@@ -12,7 +12,7 @@ use crate::accel::Hit;
 use crate::geometry::Ray;
 use crate::light::AreaShape;
 use crate::shape::{self, PrimKind, PrimRef, SurfaceHit};
-use candela_scene::{InstanceDesc, MeshDesc, SceneDesc, Sides, SphereDesc};
+use candela_scene::{InstanceDesc, MeshDesc, SceneDesc, Sides, SphereDesc, TangentFrame};
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 /// All triangles of the scene, every instance flattened into global arrays
@@ -114,11 +114,11 @@ impl Geometry {
                 })?;
             let material = inst.material.unwrap_or(mesh.material);
             let normal_mapped = desc.materials.get(material).is_some_and(|m| {
-                let back_mapped = match &m.sides {
-                    Sides::Back(b) => b.textures.normal.is_some(),
-                    _ => false,
+                let mapped = |m: &candela_scene::MaterialDesc| {
+                    m.textures.normal.is_some()
+                        && m.textures.perturbation.tangent_frame == TangentFrame::VertexTangents
                 };
-                m.textures.normal.is_some() || back_mapped
+                mapped(m) || matches!(&m.sides, Sides::Back(b) if mapped(b))
             });
             let tangents: &[Vec4] = if mesh.tangents.is_empty() && normal_mapped {
                 generated[inst.mesh]

@@ -3,10 +3,13 @@
 //! and whether the surface is there at all (opacity cut-outs).
 //!
 //! - [`textures`]: every texture slot read at the hit's `uv`.
-//! - [`normal_map`]: tangent-space normal maps and the shading-frame rule
-//!   that never lets a sampled direction leak through the geometric
-//!   surface (bend the mapped normal toward the viewer; the geometric
-//!   normal decides reflection vs transmission: [`scatter_allowed`]).
+//! - [`normal_map`]: tangent-space normal maps, bump maps, the
+//!   shading-frame rules that never let a sampled direction leak through
+//!   the geometric surface (mirror or bend a mapped normal that faces away
+//!   from the viewer; the geometric normal decides reflection vs
+//!   transmission: [`scatter_allowed`]), and the bump shadowing
+//!   ([`Terminator`]) a [`ShadingFrame`] carries, each as the material's
+//!   `PerturbationRules` (its file format's conventions) say.
 //! - [`opacity`]: cut-outs, applied by the visibility queries
 //!   (`scene/visibility.rs`) to camera, bounce and shadow rays alike.
 
@@ -19,6 +22,7 @@ mod leak_tests;
 #[cfg(test)]
 mod sides_tests;
 
+pub use normal_map::Terminator;
 pub use textures::MaterialTextures;
 
 use crate::bsdf::{Bsdf, BsdfSample};
@@ -26,21 +30,61 @@ use crate::geometry::Frame;
 use crate::material::Material;
 use crate::scene::Scene;
 use crate::shape::{PrimKind, SurfaceHit};
+use candela_scene::{AwayFromViewer, TangentFrame};
 use glam::{Vec2, Vec3};
 use std::f32::consts::{PI, TAU};
 
+/// The frame a BSDF is evaluated in at a hit, and the shadowing the bumps
+/// of its normal or bump map cast on light arriving there (none without a
+/// map, or where the material's rules have no such term). Derefs to the
+/// frame.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadingFrame {
+    /// The (perturbed) shading frame.
+    pub frame: Frame,
+    /// The bump shadowing, see [`Terminator`].
+    pub terminator: Terminator,
+}
+
+impl ShadingFrame {
+    /// The frame around `n`, without shadowing.
+    #[inline]
+    pub fn plain(n: Vec3) -> Self {
+        Self {
+            frame: Frame::from_normal(n),
+            terminator: Terminator::NONE,
+        }
+    }
+
+    /// The factor on `f` for light arriving from (or leaving toward) the
+    /// world direction `wi`: 1 without a shadowing term.
+    #[inline(always)]
+    pub fn shadowing(&self, wi: Vec3) -> f32 {
+        self.terminator.factor(wi)
+    }
+}
+
+impl std::ops::Deref for ShadingFrame {
+    type Target = Frame;
+    #[inline(always)]
+    fn deref(&self) -> &Frame {
+        &self.frame
+    }
+}
+
 /// The frame a BSDF is evaluated in at `hit`: around the shading normal,
 /// perturbed by the normal or bump map of the material on the side the hit
-/// sees ([`Material::facing`]) (and bent by the rule of [`normal_map`])
-/// when it has one, with its +X along dp/du when that material's BSDF is
-/// anisotropic (Mitsuba's shading frame). Otherwise this is exactly
-/// `Frame::from_normal(hit.ns)`, inlined into the caller.
+/// sees ([`Material::facing`]), following its
+/// [`candela_scene::PerturbationRules`] (see [`normal_map`]), with its +X
+/// along dp/du when that material's BSDF is anisotropic (Mitsuba's shading
+/// frame). Otherwise this is exactly `Frame::from_normal(hit.ns)`, inlined
+/// into the caller.
 #[inline]
-pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Frame {
+pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> ShadingFrame {
     let side = material.facing(hit).unwrap_or(material);
     let t = &side.textures;
     if t.normal.is_none() && t.bump.is_none() && !side.anisotropic {
-        return Frame::from_normal(hit.ns);
+        return ShadingFrame::plain(hit.ns);
     }
     perturbed_frame(scene, hit, side)
 }
@@ -48,8 +92,9 @@ pub fn shading_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Fr
 /// [`shading_frame`] of a material with a normal or bump map or an
 /// anisotropic BSDF.
 #[inline(never)]
-fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Frame {
+fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> ShadingFrame {
     let t = &material.textures;
+    let rules = t.perturbation;
     let (dpdu, dpdv) = uv_derivatives(scene, hit);
     let frame = |n: Vec3| {
         if material.anisotropic {
@@ -60,30 +105,54 @@ fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Fram
     };
     let mut n = hit.ns;
     if let Some(map) = &t.normal {
-        // With per-vertex tangents, (T, w · N × T) is the frame the map was
-        // baked in; mapped_normal orthogonalises T against N and turns the
-        // bitangent to the side of w · N × T, which is that frame exactly.
-        let (tu, tv) = match hit.tangent {
-            Some(tangent) => {
-                let tu = tangent.truncate();
-                (tu, tangent.w * n.cross(tu))
-            }
-            None => (dpdu, dpdv),
-        };
+        let (tu, tv) = tangent_axes(rules.tangent_frame, hit, dpdu, dpdv);
         n = normal_map::mapped_normal(n, tu, tv, map.image.lookup(hit.uv), map.scale);
     }
     if let Some(bump) = &t.bump {
-        let (w, h) = bump.image.size();
-        let (du, dv) = (0.5 / w as f32, 0.5 / h as f32);
-        let height = |u: f32, v: f32| bump.value(hit.uv + Vec2::new(u, v), 0);
-        let dhdu = (height(du, 0.0) - height(-du, 0.0)) / (2.0 * du);
-        let dhdv = (height(0.0, dv) - height(0.0, -dv)) / (2.0 * dv);
-        n = normal_map::bumped_normal(n, dpdu, dpdv, dhdu, dhdv);
+        let slope = bump.gradient(hit.uv, BUMP_CHANNEL);
+        n = normal_map::bumped_normal(n, dpdu, dpdv, slope.x, slope.y);
     }
     if n == hit.ns {
-        return frame(hit.ns);
+        return ShadingFrame {
+            frame: frame(hit.ns),
+            terminator: Terminator::NONE,
+        };
     }
-    frame(normal_map::keep_viewer_above(n, hit.ns, hit.wo))
+    if rules.away_from_viewer == AwayFromViewer::MirrorTangent {
+        n = normal_map::mirror_if_away(n, hit.ns, hit.wo);
+    }
+    // Bending is the guard of both rules: a no-op where the viewer sees n.
+    let n = normal_map::keep_viewer_above(n, hit.ns, hit.wo);
+    ShadingFrame {
+        frame: frame(n),
+        terminator: if rules.shadow_terminator {
+            Terminator::new(hit.ns, n)
+        } else {
+            Terminator::NONE
+        },
+    }
+}
+
+/// The height channel of a bump map (grey images have it in every channel).
+const BUMP_CHANNEL: u8 = 0;
+
+/// The two directions a normal map's x and y are along at `hit` (made
+/// orthogonal to the normal by `mapped_normal`, which also turns the
+/// second to the side of the one given here).
+fn tangent_axes(rule: TangentFrame, hit: &SurfaceHit, dpdu: Vec3, dpdv: Vec3) -> (Vec3, Vec3) {
+    let n = hit.ns;
+    match (rule, hit.tangent) {
+        // With per-vertex tangents, (T, w · N × T) is the frame the map was
+        // baked in; mapped_normal orthogonalises T against N and turns the
+        // bitangent to the side of w · N × T, which is that frame exactly.
+        (TangentFrame::VertexTangents, Some(tangent)) => {
+            let tu = tangent.truncate();
+            (tu, tangent.w * n.cross(tu))
+        }
+        (TangentFrame::VertexTangents, None) => (dpdu, dpdv),
+        // Right-handed about N whatever the UVs' orientation.
+        (TangentFrame::SurfaceDpDu, _) => (dpdu, n.cross(dpdu)),
+    }
 }
 
 /// Rule 2 of [`normal_map`]: a scattered direction `wi` counts only if its
@@ -115,7 +184,9 @@ pub enum NoScatter {
 /// Samples the BSDF in `frame` for `wo_local` (the direction toward the
 /// viewer in `frame`'s coordinates, which the caller has for its light
 /// samples too) and returns the world direction with the sample, or why
-/// there is none (`ng` the geometric normal facing the viewer).
+/// there is none (`ng` the geometric normal facing the viewer). The
+/// sample's `f` does not include `frame`'s shadowing (the caller weighs
+/// by [`ShadingFrame::shadowing`]).
 #[inline]
 pub fn sample_scatter(
     bsdf: &Bsdf,

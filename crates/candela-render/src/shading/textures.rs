@@ -21,7 +21,7 @@
 
 use crate::bsdf::{Bsdf, MicrofacetDistribution};
 use crate::texture::{SlotTexture, TextureCache};
-use candela_scene::{TextureSlot, TextureSlots};
+use candela_scene::{PerturbationRules, TextureSlot, TextureSlots};
 use glam::{Vec2, Vec3};
 
 /// The channel one-value slots read when the description names none.
@@ -54,6 +54,8 @@ pub struct MaterialTextures {
     /// The opacity where there is no opacity texture (glTF's constant
     /// alpha), read through `opacity_cutoff` like a texel.
     pub opacity_constant: Option<f32>,
+    /// How the normal and bump maps become the shading frame.
+    pub perturbation: PerturbationRules,
 }
 
 impl MaterialTextures {
@@ -67,6 +69,7 @@ impl MaterialTextures {
         let mut textures = Self {
             opacity_cutoff: slots.opacity_cutoff,
             opacity_constant: slots.opacity_constant,
+            perturbation: slots.perturbation,
             ..Self::default()
         };
         let mut unusable = Vec::new();

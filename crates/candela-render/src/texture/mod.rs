@@ -192,6 +192,37 @@ impl ImageTexture {
         }
     }
 
+    /// The gradient (∂/∂u, ∂/∂v) of [`ImageTexture::lookup_channel`] at
+    /// `uv`: the exact derivative of the bilinear interpolant (constant in
+    /// u along a row of cells, so it jumps at texel centres), as a bump
+    /// map's slope. Zero for an alpha channel the image lacks.
+    pub fn gradient_channel(&self, uv: Vec2, c: u8) -> Vec2 {
+        match (c, &self.alpha) {
+            (0..=2, _) => self.bilinear_gradient(uv, |i, j| self.texel(i, j)[c as usize]),
+            (_, Some(alpha)) => self.bilinear_gradient(uv, |i, j| alpha[self.texel_index(i, j)]),
+            (_, None) => Vec2::ZERO,
+        }
+    }
+
+    /// ∂/∂u and ∂/∂v of the bilinear interpolation of `texel` at `uv`.
+    fn bilinear_gradient(&self, uv: Vec2, texel: impl Fn(i64, i64) -> f32) -> Vec2 {
+        if !uv.is_finite() {
+            return Vec2::ZERO;
+        }
+        let (w, h) = (self.width as f64, self.height as f64);
+        let x = f64::from(uv.x) * w - 0.5;
+        let y = f64::from(uv.y) * h - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = ((x - x0) as f32, (y - y0) as f32);
+        let (i, j) = (x0 as i64, y0 as i64);
+        let (t00, t10) = (texel(i, j), texel(i + 1, j));
+        let (t01, t11) = (texel(i, j + 1), texel(i + 1, j + 1));
+        // d/dx of the interpolant, then dx/du = width (likewise for v).
+        let d_dx = (1.0 - fy) * (t10 - t00) + fy * (t11 - t01);
+        let d_dy = (1.0 - fx) * (t01 - t00) + fx * (t11 - t10);
+        Vec2::new(d_dx * w as f32, d_dy * h as f32)
+    }
+
     /// Row-major index of texel `(i, j)` (`j` from the bottom), wrapped.
     fn texel_index(&self, i: i64, j: i64) -> usize {
         let i = i.rem_euclid(self.width as i64) as usize;

@@ -46,4 +46,11 @@ impl SlotTexture {
             .lookup_channel(uv, self.channel.unwrap_or(default_channel))
             * self.scale
     }
+
+    /// The gradient (∂/∂u, ∂/∂v) of [`SlotTexture::value`] at `uv`.
+    pub fn gradient(&self, uv: Vec2, default_channel: u8) -> Vec2 {
+        self.image
+            .gradient_channel(uv, self.channel.unwrap_or(default_channel))
+            * self.scale
+    }
 }

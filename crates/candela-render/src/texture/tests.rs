@@ -172,3 +172,29 @@ fn a_2x2_png_decodes_to_its_known_values_in_either_colour_space() {
     // sRGB code 188 is linear 0.5 (to 3 digits), the classic check.
     assert!((srgb_decode(188.0 / 255.0) - 0.5029).abs() < 1e-3);
 }
+
+#[test]
+fn the_gradient_is_the_bilinear_lookups_slope() {
+    // Inside a cell the interpolant is linear in u along a row (and in v
+    // along a column), so the gradient must equal a difference quotient of
+    // `lookup_channel` taken within the same cell, for every channel.
+    let t = ImageTexture::from_image(&image()).unwrap();
+    let h = 1e-3;
+    for &(u, v) in &[(0.3, 0.4), (0.55, 0.6), (0.9, 0.3), (0.05, 0.95)] {
+        for c in 0..3 {
+            let g = t.gradient_channel(Vec2::new(u, v), c);
+            let at = |du: f32, dv: f32| t.lookup_channel(Vec2::new(u + du, v + dv), c);
+            let du = (at(h, 0.0) - at(-h, 0.0)) / (2.0 * h);
+            let dv = (at(0.0, h) - at(0.0, -h)) / (2.0 * h);
+            assert!(
+                (g.x - du).abs() < 1e-2 && (g.y - dv).abs() < 1e-2,
+                "{g} vs ({du}, {dv}) at ({u}, {v}) channel {c}"
+            );
+        }
+    }
+    // A constant image has no slope; a missing alpha channel neither.
+    let flat = RgbImage::from_pixels(2, 2, vec![[0.3, 0.3, 0.3]; 4]).unwrap();
+    let flat = ImageTexture::from_image(&flat).unwrap();
+    assert_eq!(flat.gradient_channel(Vec2::new(0.37, 0.81), 0), Vec2::ZERO);
+    assert_eq!(t.gradient_channel(Vec2::new(0.37, 0.81), 3), Vec2::ZERO);
+}

@@ -8,7 +8,7 @@
 //! on their [`TextureSlot`] (metalness 0, opacity 1, the geometry's own
 //! shading normal).
 
-use super::SourceLoc;
+use super::{PerturbationRules, SourceLoc};
 use glam::Vec3;
 use std::path::PathBuf;
 
@@ -136,8 +136,9 @@ pub enum TextureSlot {
     /// Tangent-space normal map; the geometry's shading normal otherwise.
     Normal,
     /// Bump (height) map: the shading normal of the surface displaced by
-    /// the value (times the scale) along its normal, in scene units per
-    /// unit of UV (OBJ `bump`/`map_Bump`, Mitsuba `bumpmap`).
+    /// the value (times the scale) along its normal, the value read as
+    /// scene units per unit of UV (OBJ `bump`/`map_Bump`, Mitsuba
+    /// `bumpmap` with its `scale`).
     Bump,
     /// Emitted radiance, replacing [`MaterialDesc::emission`].
     Emission,
@@ -207,6 +208,9 @@ pub struct TextureSlots {
     /// alpha); read like the texture's value, `opacity_cutoff` included.
     /// Ignored when the slot has a texture.
     pub opacity_constant: Option<f32>,
+    /// How the normal and bump maps become the shading frame (the
+    /// format's conventions).
+    pub perturbation: PerturbationRules,
 }
 
 impl TextureSlots {

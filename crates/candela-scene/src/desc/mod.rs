@@ -18,6 +18,7 @@
 
 mod camera;
 mod material;
+mod perturbation;
 mod tangents;
 
 pub use camera::{CameraDesc, Projection};
@@ -25,6 +26,7 @@ pub use material::{
     Alpha, BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, Sides, TextureRef, TextureSlot,
     TextureSlots,
 };
+pub use perturbation::{AwayFromViewer, PerturbationRules, TangentFrame};
 
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;

@@ -9,8 +9,8 @@
 //! | `roughdielectric` | `RoughDielectric` (alpha, or alpha_u/alpha_v; beckmann or ggx) |
 //! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth, alpha_u/alpha_v anisotropic), `material` presets (the measured metals of [`crate::metals`]) or eta/k; a smooth `none` with `specular_reflectance` is a `Mirror` of that reflectance |
 //! | `plastic`, `roughplastic` | `Plastic` (alpha 0 when smooth), with `nonlinear` |
-//! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the bump (height) or normal-map slot |
-//! | `mask` | the inner BSDF, its opacity texture in the opacity slot |
+//! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the bump (height, times `scale`) or normal-map slot, with Mitsuba's [`PerturbationRules`] (`use_shadowing_function`; `flip_invalid_normals` false is reported) |
+//! | `mask` | the inner BSDF, its opacity texture in the opacity slot, or a constant opacity (a colour's luminance) |
 //!
 //! Mitsuba BSDFs Candela lacks (`principled`, `blendbsdf`, `null`, ...) are
 //! replaced by the closest one and reported once.
@@ -23,11 +23,11 @@
 //! evaluates its first BSDF there, or its second when it has two.
 
 use super::doc::{elements, Doc, XNode};
-use super::values::{boolean, constant_color, float_of, string};
+use super::values::{boolean, constant_color, float, float_of, string};
 use super::{tables, Builder};
 use crate::desc::{
-    Alpha, BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, Sides, TextureRef, TextureSlot,
-    TextureSlots,
+    Alpha, AwayFromViewer, BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, PerturbationRules,
+    Sides, TextureRef, TextureSlot, TextureSlots,
 };
 use crate::error::{ErrorKind, LoadError};
 use glam::Vec3;
@@ -252,25 +252,25 @@ impl Builder {
         }
         match kind {
             "bumpmap" | "normalmap" => {
-                if let Some(tex) = self.map_texture(doc, node)? {
+                if let Some(mut tex) = self.map_texture(doc, node)? {
                     let slot = if kind == "bumpmap" {
+                        // The height gradient's factor.
+                        tex.scale = float(doc, node, "scale", 1.0)?;
                         TextureSlot::Bump
                     } else {
                         TextureSlot::Normal
                     };
                     m.textures.set(slot, tex);
                 }
+                m.textures.perturbation = self.perturbation_rules(doc, node)?;
             }
             "mask" => {
                 let (opacity, tex) = self.color(doc, node, "opacity", Vec3::ONE)?;
-                set(&mut m.textures, TextureSlot::Opacity, tex);
-                if opacity.min_element() < 1.0 {
-                    self.warn(
-                        doc,
-                        node,
-                        "constant partial opacity is not supported (opaque)",
-                    )?;
+                if tex.is_none() && opacity.min_element() < 1.0 {
+                    // Mitsuba reads a colour as one value by its luminance.
+                    m.textures.opacity_constant = Some(luminance(opacity).clamp(0.0, 1.0));
                 }
+                set(&mut m.textures, TextureSlot::Opacity, tex);
             }
             "blendbsdf" => self.warn(doc, node, "blendbsdf rendered as its first BSDF")?,
             _ => {}
@@ -317,6 +317,27 @@ impl Builder {
         Ok(())
     }
 
+    /// Mitsuba's rules for the shading frame of a `normalmap` or
+    /// `bumpmap` (its `flip_invalid_normals` and `use_shadowing_function`).
+    fn perturbation_rules(
+        &mut self,
+        doc: &Doc,
+        node: XNode,
+    ) -> Result<PerturbationRules, LoadError> {
+        let mut rules = PerturbationRules::MITSUBA;
+        rules.shadow_terminator = boolean(doc, node, "use_shadowing_function", true)?;
+        if !boolean(doc, node, "flip_invalid_normals", true)? {
+            let p = doc.prop(node, "flip_invalid_normals")?.unwrap_or(node);
+            self.warn(
+                doc,
+                p,
+                "flip_invalid_normals false is not supported (a normal facing away from the viewer is bent toward it)",
+            )?;
+            rules.away_from_viewer = AwayFromViewer::BendTowardViewer;
+        }
+        Ok(rules)
+    }
+
     /// The image of a bump or normal map (a `<texture>` or `<ref>` child).
     fn map_texture(&mut self, doc: &Doc, node: XNode) -> Result<Option<TextureRef>, LoadError> {
         for c in elements(node) {
@@ -328,8 +349,9 @@ impl Builder {
                 },
                 _ => continue,
             };
-            if let Texture::Image(mut t) = t {
-                t.color_space = ColorSpace::Linear;
+            // Read as the texture says, as Mitsuba does: a map wants
+            // `raw` (else its PNG is decoded from sRGB first).
+            if let Texture::Image(t) = t {
                 return Ok(Some(t));
             }
         }
@@ -524,6 +546,11 @@ fn sides_of(doc: &Doc, node: XNode, kind: &str) -> Result<Sides, LoadError> {
         _ => false,
     };
     Ok(if transmits { Sides::Both } else { Sides::Front })
+}
+
+/// Rec. 709 luminance, as Mitsuba reads a colour where it needs one value.
+fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
 fn check_alpha(doc: &Doc, node: XNode, alpha: f32) -> Result<f32, LoadError> {

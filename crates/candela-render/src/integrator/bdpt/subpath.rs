@@ -10,7 +10,7 @@
 //! weights ignore it: any weights that sum to one over the strategies keep
 //! the estimate unbiased.
 
-use super::vertex::{infinite_light_density, Vertex, VertexKind};
+use super::vertex::{infinite_light_density, toward_light, Vertex, VertexKind};
 use crate::bsdf::{shading_normal_correction, Bsdf, BsdfSample, TransportMode};
 use crate::geometry::{Frame, Ray};
 use crate::integrator::ThreadContext;
@@ -192,7 +192,8 @@ impl Walk {
             };
             beta *= s.f
                 * (s.wi.z.abs() / s.pdf)
-                * shading_normal_correction(self.mode, wo, wi, frame.z, hit.ng);
+                * shading_normal_correction(self.mode, wo, wi, frame.z, hit.ng)
+                * frame.shadowing(toward_light(self.mode, wo, wi));
             let specular = s.flags.is_specular();
             let (wo_l, wi_l) = (frame.to_local(wo), s.wi);
             let mut pdf_rev = bsdf.pdf(wi_l, wo_l);

@@ -4,9 +4,10 @@
 //! §10.2; pbrt-v4's `Vertex`).
 
 use crate::bsdf::{shading_normal_correction, Bsdf, TransportMode};
-use crate::geometry::{Frame, Ray};
+use crate::geometry::Ray;
 use crate::light::Light;
 use crate::scene::Scene;
+use crate::shading::ShadingFrame;
 use crate::shape::SurfaceHit;
 use glam::Vec3;
 
@@ -36,8 +37,8 @@ pub(crate) enum VertexKind {
     Surface {
         /// The hit.
         hit: SurfaceHit,
-        /// The shading frame.
-        frame: Frame,
+        /// The shading frame, with its bump shadowing.
+        frame: ShadingFrame,
         /// The BSDF, `None` for a pure emitter.
         bsdf: Option<Bsdf>,
     },
@@ -135,6 +136,7 @@ impl Vertex {
                 }
                 bsdf.f_mode(wo_l, wi_l, mode)
                     * shading_normal_correction(mode, wo_world, wi, frame.z, hit.ng)
+                    * frame.shadowing(toward_light(mode, wo_world, wi))
             }
             VertexKind::Light { light, le } => {
                 emitted_toward(scene.lights.get(light), le, self.ns, wi)
@@ -301,5 +303,18 @@ pub(crate) fn emitted_toward(light: &Light, le: Vec3, n: Vec3, w: Vec3) -> Vec3 
             }
         }
         Light::Directional(_) | Light::Ambient(_) | Light::Environment(_) => le,
+    }
+}
+
+/// Of a surface vertex's two directions, `wo` toward its predecessor on
+/// the subpath and `wi` toward its successor, the one toward the light:
+/// a camera subpath (radiance) reaches the light after the vertex, a light
+/// subpath (importance) came from it. The bump shadowing
+/// (`ShadingFrame::shadowing`) is not reciprocal: it attenuates the light
+/// side, as in the path tracer, so every strategy weighs a path alike.
+pub fn toward_light(mode: TransportMode, wo: Vec3, wi: Vec3) -> Vec3 {
+    match mode {
+        TransportMode::Radiance => wi,
+        TransportMode::Importance => wo,
     }
 }
