@@ -77,6 +77,7 @@ mod transport;
 #[cfg(test)]
 mod transport_tests;
 
+use distribution::Masking;
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
 pub use metallic_roughness::MetallicRoughness;
@@ -415,6 +416,7 @@ impl Bsdf {
                 reflectance,
                 transmittance,
                 ior,
+                masking: Masking::HeightCorrelated,
             }),
             _ => None,
         }
