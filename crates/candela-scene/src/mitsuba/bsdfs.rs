@@ -11,8 +11,9 @@
 //! | `plastic`, `roughplastic` | `Plastic` (alpha 0 when smooth), with `nonlinear` |
 //! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the bump (height) or normal-map slot |
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot |
+//! | `principled` | `Principled` (`principled.rs`: every parameter; textures on base_color, roughness, metallic) |
 //!
-//! Mitsuba BSDFs Candela lacks (`principled`, `blendbsdf`, `null`, ...) are
+//! Mitsuba BSDFs Candela lacks (`principledthin`, `blendbsdf`, `null`, ...) are
 //! replaced by the closest one and reported once.
 
 use super::doc::{elements, Doc, XNode};
@@ -145,7 +146,8 @@ impl Builder {
                     nonlinear: boolean(doc, node, "nonlinear", false)?,
                 }
             }
-            "principled" | "principledthin" => {
+            "principled" => self.principled(doc, node, &mut textures)?,
+            "principledthin" => {
                 self.warn(
                     doc,
                     node,
