@@ -9,7 +9,10 @@
 //! is returned by name as [`Unsupported`] (the scene reports it once),
 //! never dropped silently.
 
-use crate::bsdf::{Bsdf, MetallicRoughness, MicrofacetDistribution, Plastic, RoughPlastic};
+use crate::bsdf::{
+    Bsdf, MetallicRoughness, MicrofacetDistribution, Plastic, Principled, PrincipledParameters,
+    RoughPlastic,
+};
 use crate::shading::MaterialTextures;
 use crate::shape::SurfaceHit;
 use crate::texture::TextureCache;
@@ -149,6 +152,33 @@ impl Material {
                 MetallicRoughness::new(base_color, metallic, roughness, transmission, ior)
                     .with_specular(specular, specular_color),
             )),
+            BsdfDesc::Principled {
+                base_color,
+                roughness,
+                anisotropic,
+                metallic,
+                spec_trans,
+                eta,
+                spec_tint,
+                sheen,
+                sheen_tint,
+                flatness,
+                clearcoat,
+                clearcoat_gloss,
+            } => Some(Bsdf::Principled(Principled::new(PrincipledParameters {
+                base_color,
+                roughness,
+                anisotropic,
+                metallic,
+                spec_trans,
+                eta,
+                spec_tint,
+                sheen,
+                sheen_tint,
+                flatness,
+                clearcoat,
+                clearcoat_gloss,
+            }))),
         };
         let (textures, unusable) =
             MaterialTextures::from_slots(&desc.textures, bsdf.as_ref(), textures_cache);

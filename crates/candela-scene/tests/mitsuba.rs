@@ -213,8 +213,8 @@ fn unsupported_plugins_warn_once_or_fail_in_strict_mode() {
     let dir = candela_testkit::TempDir::new("mitsuba-warn");
     let path = dir.join("warn.xml");
     let body = r#"<scene version="3.0.0">
-    <shape type="cube"><bsdf type="principled"/></shape>
-    <shape type="cube"><bsdf type="principled"/></shape>
+    <shape type="cube"><bsdf type="principledthin"/></shape>
+    <shape type="cube"><bsdf type="principledthin"/></shape>
     <shape type="cylinder"/>
 </scene>"#;
     std::fs::write(&path, body).unwrap();
@@ -224,6 +224,96 @@ fn unsupported_plugins_warn_once_or_fail_in_strict_mode() {
     assert!(l.report.mentions("cylinder"));
     let err = load(&path, &strict()).unwrap_err();
     assert_eq!(err.kind, candela_scene::ErrorKind::Unsupported, "{err}");
+}
+
+#[test]
+fn principled_reads_every_parameter_and_mitsubas_ior_rules() {
+    let dir = candela_testkit::TempDir::new("mitsuba-principled");
+    std::fs::write(dir.join("rough.png"), []).unwrap();
+    let path = dir.join("principled.xml");
+    let body = r#"<scene version="3.0.0">
+    <shape type="cube"><bsdf type="principled">
+        <rgb name="base_color" value="0.7, 0.2, 0.1"/>
+        <texture type="bitmap" name="roughness"><string name="filename" value="rough.png"/></texture>
+        <float name="anisotropic" value="0.3"/><float name="metallic" value="0.4"/>
+        <float name="spec_trans" value="0.5"/><float name="specular" value="0"/>
+        <float name="spec_tint" value="0.6"/><float name="sheen" value="0.7"/>
+        <float name="sheen_tint" value="0.8"/><float name="flatness" value="0.9"/>
+        <float name="clearcoat" value="0.25"/><float name="clearcoat_gloss" value="0.35"/>
+        <float name="clearcoat_sampling_rate" value="2"/>
+    </bsdf></shape>
+    <shape type="cube"><bsdf type="principled"><float name="specular" value="1"/>
+        <texture type="bitmap" name="sheen"><string name="filename" value="rough.png"/></texture>
+    </bsdf></shape>
+    <shape type="cube"><bsdf type="principled"><float name="eta" value="1"/>
+        <float name="spec_trans" value="1"/></bsdf></shape>
+</scene>"#;
+    std::fs::write(&path, body).unwrap();
+    let l = load(&path, &LoadOptions::default()).unwrap();
+    let BsdfDesc::Principled {
+        base_color,
+        roughness,
+        anisotropic,
+        metallic,
+        spec_trans,
+        eta,
+        spec_tint,
+        sheen,
+        sheen_tint,
+        flatness,
+        clearcoat,
+        clearcoat_gloss,
+    } = l.scene.materials[0].bsdf
+    else {
+        panic!("{:?}", l.scene.materials[0].bsdf)
+    };
+    assert!(close(base_color, Vec3::new(0.7, 0.2, 0.1)));
+    assert_eq!(
+        roughness, 0.5,
+        "a textured roughness keeps Mitsuba's default"
+    );
+    assert!(l.scene.materials[0].textures.roughness.is_some());
+    assert_eq!(
+        [
+            anisotropic,
+            metallic,
+            spec_trans,
+            spec_tint,
+            sheen,
+            sheen_tint,
+            flatness
+        ],
+        [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9]
+    );
+    assert_eq!([clearcoat, clearcoat_gloss], [0.25, 0.35]);
+    // specular 0 on a transmitting material is 0.001, as Mitsuba: η ≈ 1.0036.
+    let expected = 2.0 / (1.0 - (0.08f32 * 1e-3).sqrt()) - 1.0;
+    assert!((eta - expected).abs() < 1e-6 && eta > 1.0, "{eta}");
+    // specular 1 is η = 2/(1 − √0.08) − 1; eta 1 on a transmitting one is 1.001.
+    let etas: Vec<f32> = l.scene.materials[1..]
+        .iter()
+        .map(|m| match m.bsdf {
+            BsdfDesc::Principled { eta, .. } => eta,
+            _ => f32::NAN,
+        })
+        .collect();
+    assert!(
+        (etas[0] - (2.0 / (1.0 - 0.08f32.sqrt()) - 1.0)).abs() < 1e-6,
+        "{etas:?}"
+    );
+    assert_eq!(etas[1], 1.001);
+    assert!(l.report.mentions("clearcoat_sampling_rate"), "{}", l.report);
+    assert!(l.report.mentions("sheen"), "{}", l.report);
+    assert_eq!(l.report.len(), 2, "{}", l.report);
+    // Both eta and specular is an error, as in Mitsuba.
+    std::fs::write(
+        &path,
+        r#"<scene version="3.0.0"><shape type="cube"><bsdf type="principled">
+        <float name="eta" value="1.4"/><float name="specular" value="0.3"/></bsdf></shape></scene>"#,
+    )
+    .unwrap();
+    let err = load(&path, &LoadOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("either"), "{err}");
 }
 
 #[test]

@@ -65,7 +65,8 @@ use std::f32::consts::FRAC_1_PI;
 
 use glam::{Vec2, Vec3};
 
-use super::distribution::MicrofacetDistribution;
+use super::distribution::{Masking, MicrofacetDistribution};
+use super::microfacet;
 use super::rough_dielectric::RoughDielectric;
 use super::specular::{delta_sample, reflect_local, MIRROR_FLAGS};
 use super::{BsdfFlags, BsdfSample};
@@ -203,6 +204,7 @@ impl MetallicRoughness {
             reflectance: Vec3::ONE,
             transmittance: self.base_color,
             ior: self.ior,
+            masking: Masking::HeightCorrelated,
         }
     }
 
@@ -312,10 +314,7 @@ impl MetallicRoughness {
         if self.is_smooth() || c.specular <= 0.0 {
             return diffuse;
         }
-        let h = (up_o + up_i).normalize();
-        let dist = self.distribution();
-        let specular = dist.d(h) * dist.g1(up_o) / (4.0 * up_o.z);
-        diffuse + c.specular * specular
+        diffuse + c.specular * microfacet::pdf(self.distribution(), wo, wi)
     }
 
     /// Picks a lobe with `u1`, samples it with `u2` (the glass reuses the
@@ -329,18 +328,8 @@ impl MetallicRoughness {
             return delta_sample(reflect_local(wo), weight, c.specular, MIRROR_FLAGS);
         }
         let (wi, lobe) = if u1 < c.specular {
-            let h = self.distribution().sample_visible_normal(up_o, u2);
-            let cos_oh = up_o.dot(h);
-            if cos_oh <= 0.0 {
-                return None;
-            }
-            let w = (2.0 * cos_oh * h - up_o).normalize();
-            if w.z <= 0.0 {
-                // Reflected below the surface: lost (the density of the
-                // lobe accounts for it).
-                return None;
-            }
-            (Vec3::new(w.x, w.y, sign * w.z), BsdfFlags::GLOSSY)
+            let wi = microfacet::sample_reflection(self.distribution(), wo, u2)?;
+            (wi, BsdfFlags::GLOSSY)
         } else if u1 < c.specular + c.diffuse || c.glass <= 0.0 {
             let w = square_to_cosine_hemisphere(u2);
             (Vec3::new(w.x, w.y, sign * w.z), BsdfFlags::DIFFUSE)

@@ -63,6 +63,20 @@ pub(super) fn sample(
     wo: Vec3,
     u: Vec2,
 ) -> Option<BsdfSample> {
+    let wi = sample_reflection(dist, wo, u)?;
+    let pdf = pdf(dist, wo, wi);
+    (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
+        wi,
+        f: f(dist, eta, k, wo, wi),
+        pdf,
+        flags: FLAGS,
+    })
+}
+
+/// A direction reflected about a normal visible from `wo` (either side, the
+/// result on the side of `wo`), with density [`pdf`]; `None` when the
+/// reflection goes below the surface (the density accounts for that loss).
+pub(super) fn sample_reflection(dist: MicrofacetDistribution, wo: Vec3, u: Vec2) -> Option<Vec3> {
     let (up, _, sign) = to_upper(wo, Vec3::Z);
     if up.z <= 0.0 {
         return None;
@@ -73,15 +87,5 @@ pub(super) fn sample(
         return None;
     }
     let wi_up = (2.0 * cos_oh * h - up).normalize();
-    if wi_up.z <= 0.0 {
-        return None;
-    }
-    let wi = Vec3::new(wi_up.x, wi_up.y, sign * wi_up.z);
-    let pdf = pdf(dist, wo, wi);
-    (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
-        wi,
-        f: f(dist, eta, k, wo, wi),
-        pdf,
-        flags: FLAGS,
-    })
+    (wi_up.z > 0.0).then(|| Vec3::new(wi_up.x, wi_up.y, sign * wi_up.z))
 }

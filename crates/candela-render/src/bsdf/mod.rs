@@ -17,7 +17,8 @@
 //!   BSDFs (diffuse, mirror, conductor) behave as if the frame were flipped
 //!   so that `wo.z > 0`, so a caller *may* flip the frame for them, but need
 //!   not. Dielectrics ([`Bsdf::Glass`], [`Bsdf::Refraction`],
-//!   [`Bsdf::RoughGlass`]) read the side
+//!   [`Bsdf::RoughGlass`], and the transmissive [`Bsdf::MetallicRoughness`]
+//!   and [`Bsdf::Principled`]) read the side
 //!   of `wo` to know whether the path is entering (`wo.z > 0`, relative IOR
 //!   `ior`) or leaving (`wo.z < 0`, relative IOR `1 / ior`), so the caller
 //!   **must not flip** the frame for them. The safe rule: never flip.
@@ -62,6 +63,7 @@ mod microfacet_tests;
 mod plastic;
 #[cfg(test)]
 mod plastic_tests;
+mod principled;
 mod rough_dielectric;
 #[cfg(test)]
 mod rough_dielectric_tests;
@@ -80,10 +82,12 @@ mod transport;
 #[cfg(test)]
 mod transport_tests;
 
+use distribution::Masking;
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
 pub use metallic_roughness::MetallicRoughness;
 pub use plastic::Plastic;
+pub use principled::{Principled, PrincipledParameters};
 pub use rough_plastic::RoughPlastic;
 pub use transport::{shading_normal_correction, TransportMode};
 
@@ -215,6 +219,11 @@ pub enum Bsdf {
     /// specular with Schlick Fresnel, mixed by metalness, with glass-like
     /// transmission (see `metallic_roughness.rs`).
     MetallicRoughness(MetallicRoughness),
+    /// The principled BSDF of Burley 2012/2015 as Mitsuba 3 defines it:
+    /// Burley diffuse with retro-reflection, sheen, anisotropic GGX
+    /// specular (metallic and tinted), clearcoat and rough specular
+    /// transmission (see `principled/mod.rs`).
+    Principled(Principled),
 }
 
 impl Bsdf {
@@ -232,6 +241,7 @@ impl Bsdf {
             Bsdf::Conductor { .. } => "conductor",
             Bsdf::Microfacet { .. } => "rough conductor",
             Bsdf::MetallicRoughness(_) => "glTF metallic-roughness",
+            Bsdf::Principled(_) => "principled",
         }
     }
 
@@ -249,6 +259,7 @@ impl Bsdf {
             Bsdf::Conductor { .. } => specular::MIRROR_FLAGS,
             Bsdf::Microfacet { .. } => microfacet::FLAGS,
             Bsdf::MetallicRoughness(m) => m.flags(),
+            Bsdf::Principled(p) => p.flags(),
         }
     }
 
@@ -260,6 +271,7 @@ impl Bsdf {
                 let (ax, ay) = distribution.alphas();
                 ax != ay
             }
+            Bsdf::Principled(p) => p.is_anisotropic(),
             _ => false,
         }
     }
@@ -301,6 +313,7 @@ impl Bsdf {
                 k,
             } => microfacet::f(distribution, eta, k, wo, wi),
             Bsdf::MetallicRoughness(m) => m.f(wo, wi),
+            Bsdf::Principled(p) => p.f(wo, wi),
         }
     }
 
@@ -318,7 +331,8 @@ impl Bsdf {
             | Bsdf::RoughGlass { .. }
             | Bsdf::Plastic(_)
             | Bsdf::RoughPlastic(_)
-            | Bsdf::MetallicRoughness(_) => true,
+            | Bsdf::MetallicRoughness(_)
+            | Bsdf::Principled(_) => true,
         }
     }
 
@@ -363,6 +377,7 @@ impl Bsdf {
                 k,
             } => microfacet::sample(distribution, eta, k, wo, u2),
             Bsdf::MetallicRoughness(m) => m.sample(wo, u1, u2),
+            Bsdf::Principled(p) => p.sample(wo, u1, u2),
         }
     }
 
@@ -392,6 +407,7 @@ impl Bsdf {
             Bsdf::RoughPlastic(plastic) => plastic.pdf(wo, wi),
             Bsdf::Microfacet { distribution, .. } => microfacet::pdf(distribution, wo, wi),
             Bsdf::MetallicRoughness(m) => m.pdf(wo, wi),
+            Bsdf::Principled(p) => p.pdf(wo, wi),
         }
     }
 
@@ -412,6 +428,7 @@ impl Bsdf {
                 fresnel::fresnel_conductor(1.0, eta, k)
             }
             Bsdf::MetallicRoughness(m) => m.albedo(),
+            Bsdf::Principled(p) => p.albedo(),
         }
     }
 }
@@ -430,6 +447,7 @@ impl Bsdf {
                 reflectance,
                 transmittance,
                 ior,
+                masking: Masking::HeightCorrelated,
             }),
             _ => None,
         }

@@ -17,7 +17,9 @@
 //! adjoint (importance) transport would drop the 1/η². G2 = 1 / (1 + Λ(wo) +
 //! Λ(wi)) is used for transmission too (as pbrt-v4 does): it is reciprocal
 //! and at most G1, though Heitz 2014 derives a slightly different
-//! height-correlated form for the two sides of the surface.
+//! height-correlated form for the two sides of the surface. The principled
+//! BSDF asks for the separable G1(wo)·G1(wi) instead (`masking`), as
+//! Mitsuba does.
 //!
 //! Sampling draws a normal visible from `wo` (viewed from `wo`'s side: the
 //! distributions are point-symmetric, so `−wo` from above sees the same
@@ -28,7 +30,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::distribution::MicrofacetDistribution;
+use super::distribution::{Masking, MicrofacetDistribution};
 use super::fresnel::{fresnel_dielectric, refract};
 use super::{BsdfFlags, BsdfSample};
 
@@ -45,6 +47,8 @@ pub(super) struct RoughDielectric {
     pub transmittance: Vec3,
     /// IOR of the inside (−Z) over the outside.
     pub ior: f32,
+    /// How G2 combines the masking of the two directions.
+    pub masking: Masking,
 }
 
 /// The microfacet normal that scatters `wo` into `wi`.
@@ -95,7 +99,7 @@ impl RoughDielectric {
         };
         let (cos_om, cos_im) = (wo.dot(m), wi.dot(m));
         let fresnel = fresnel_dielectric(cos_om, self.ior);
-        let dg = self.dist.d(m) * self.dist.g2(wo, wi);
+        let dg = self.dist.d(m) * self.dist.masking(self.masking, wo, wi);
         let cosines = (wo.z * wi.z).abs();
         if reflect {
             self.reflectance * (fresnel * dg / (4.0 * cosines))

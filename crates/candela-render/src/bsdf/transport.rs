@@ -50,6 +50,7 @@ impl Bsdf {
             | Bsdf::Refraction { ior, .. }
             | Bsdf::RoughGlass { ior, .. } => ior,
             Bsdf::MetallicRoughness(m) => m.ior(),
+            Bsdf::Principled(p) => p.ior(),
             Bsdf::Diffuse { .. }
             | Bsdf::Mirror { .. }
             | Bsdf::Microfacet { .. }

@@ -1,11 +1,12 @@
 //! The adjoint relation of the transport modes: the importance BSDF is the
 //! radiance BSDF with its directions swapped, for the non-symmetric models
-//! (refraction) and with shading normals that differ from the true normal.
+//! (refraction: rough glass, glTF and principled transmission) and with
+//! shading normals that differ from the true normal.
 
 use glam::{Vec2, Vec3};
 
 use super::transport::{shading_normal_correction, TransportMode};
-use super::{Bsdf, MetallicRoughness, MicrofacetDistribution};
+use super::{Bsdf, MetallicRoughness, MicrofacetDistribution, Principled, PrincipledParameters};
 use crate::geometry::Frame;
 use crate::sampling::warp::square_to_uniform_sphere;
 use crate::sampling::{Sampler, SamplerKind};
@@ -65,6 +66,19 @@ fn transmitting_bsdfs() -> Vec<(&'static str, Bsdf)> {
                 1.0,
                 1.5,
             )),
+        ),
+        (
+            "principled transmission",
+            Bsdf::Principled(Principled::new(PrincipledParameters {
+                base_color: Vec3::new(0.8, 0.6, 0.4),
+                roughness: 0.5,
+                metallic: 0.1,
+                spec_trans: 0.7,
+                eta: 1.4,
+                sheen: 0.5,
+                clearcoat: 0.5,
+                ..PrincipledParameters::default()
+            })),
         ),
     ]
 }

@@ -6,9 +6,9 @@
 //!
 //! | slot | drives |
 //! |---|---|
-//! | colour | diffuse albedo; mirror reflectance; glass, refraction, thin and rough glass transmittance (the tint); smooth and rough plastic base; glTF base colour; a smooth or rough conductor's normal-incidence reflectance F0 (η = 1, k = 2√(F0/(1−F0)), exact for F0) |
-//! | roughness (R, or the slot's channel) | rough conductor and rough glass α; a smooth conductor becomes a Beckmann rough conductor of α = value (as Mitsuba's `roughconductor` default); smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF perceptual roughness |
-//! | metalness (B by default, glTF's channel) | glTF metalness |
+//! | colour | diffuse albedo; mirror reflectance; glass, refraction, thin and rough glass transmittance (the tint); smooth and rough plastic base; glTF and principled base colour; a smooth or rough conductor's normal-incidence reflectance F0 (η = 1, k = 2√(F0/(1−F0)), exact for F0) |
+//! | roughness (R, or the slot's channel) | rough conductor and rough glass α; a smooth conductor becomes a Beckmann rough conductor of α = value (as Mitsuba's `roughconductor` default); smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF and principled (perceptual) roughness |
+//! | metalness (B by default, glTF's channel) | glTF and principled metalness |
 //! | normal map, bump map | the shading normal (`normal_map.rs`) |
 //! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
 //! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
@@ -16,7 +16,7 @@
 //! Colours are clamped to [0, 1] and one-value parameters to their ranges
 //! after scaling, so a texture never creates energy. A slot a BSDF has no
 //! parameter for (roughness on a mirror, thin glass or smooth plastic,
-//! metalness outside the glTF model, any of colour/roughness/metalness on a
+//! metalness outside the glTF and principled models, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
 use crate::bsdf::{Bsdf, MicrofacetDistribution};
@@ -193,6 +193,18 @@ impl MaterialTextures {
                     roughness.unwrap_or(rough),
                 ))
             }
+            Bsdf::Principled(p) => {
+                let q = p.parameters();
+                let metallic = self
+                    .metalness
+                    .as_ref()
+                    .map_or(q.metallic, |t| t.value(uv, METALNESS_CHANNEL));
+                Bsdf::Principled(p.with(
+                    color.unwrap_or(q.base_color),
+                    metallic,
+                    roughness.unwrap_or(q.roughness),
+                ))
+            }
             // Models added later keep their constants until they get an arm.
             #[allow(unreachable_patterns)]
             other => other,
@@ -240,7 +252,9 @@ fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
         (TextureSlot::Emission | TextureSlot::Opacity, _) => true,
         (_, None) => false,
         (TextureSlot::Color | TextureSlot::Normal | TextureSlot::Bump, Some(_)) => true,
-        (TextureSlot::Metalness, Some(b)) => matches!(b, Bsdf::MetallicRoughness(_)),
+        (TextureSlot::Metalness, Some(b)) => {
+            matches!(b, Bsdf::MetallicRoughness(_) | Bsdf::Principled(_))
+        }
         (TextureSlot::Roughness, Some(b)) => !matches!(
             b,
             Bsdf::Diffuse { .. }

@@ -374,6 +374,34 @@ pub enum BsdfDesc {
         /// by default).
         specular_color: Vec3,
     },
+    /// The principled BSDF (Burley 2012/2015) as Mitsuba 3's `principled`
+    /// defines it; every parameter but `eta` in [0, 1].
+    Principled {
+        /// Base colour (linear), per channel.
+        base_color: Vec3,
+        /// Roughness (α = roughness²).
+        roughness: f32,
+        /// Anisotropy (0 isotropic).
+        anisotropic: f32,
+        /// Metalness.
+        metallic: f32,
+        /// Fraction of the dielectric part that is transmitted.
+        spec_trans: f32,
+        /// Index of refraction of the inside relative to the outside.
+        eta: f32,
+        /// Fraction of the dielectric reflection tinted by the base colour.
+        spec_tint: f32,
+        /// Strength of the sheen lobe.
+        sheen: f32,
+        /// Fraction of the sheen tinted by the base colour.
+        sheen_tint: f32,
+        /// Blend of the diffuse toward the flattened "subsurface" shape.
+        flatness: f32,
+        /// Strength of the clearcoat lobe.
+        clearcoat: f32,
+        /// Gloss of the clearcoat.
+        clearcoat_gloss: f32,
+    },
 }
 
 /// The roughness α of a microfacet distribution along the two tangent

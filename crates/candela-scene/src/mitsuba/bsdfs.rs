@@ -11,8 +11,9 @@
 //! | `plastic`, `roughplastic` | `Plastic` (alpha 0 when smooth), with `nonlinear` |
 //! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the bump (height, times `scale`) or normal-map slot, with Mitsuba's [`PerturbationRules`] (`use_shadowing_function`; `flip_invalid_normals` false is reported) |
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot, or a constant opacity (a colour's luminance) |
+//! | `principled` | `Principled` (`principled.rs`: every parameter; textures on base_color, roughness, metallic) |
 //!
-//! Mitsuba BSDFs Candela lacks (`principled`, `blendbsdf`, `null`, ...) are
+//! Mitsuba BSDFs Candela lacks (`principledthin`, `blendbsdf`, `null`, ...) are
 //! replaced by the closest one and reported once.
 //!
 //! Sides: Mitsuba 3 evaluates every BSDF but the ones that transmit as
@@ -154,7 +155,8 @@ impl Builder {
                     nonlinear: boolean(doc, node, "nonlinear", false)?,
                 }
             }
-            "principled" | "principledthin" => {
+            "principled" => self.principled(doc, node, &mut textures)?,
+            "principledthin" => {
                 self.warn(
                     doc,
                     node,

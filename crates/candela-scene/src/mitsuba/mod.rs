@@ -19,6 +19,7 @@
 mod bsdfs;
 mod doc;
 mod emitters;
+mod principled;
 mod sensor;
 mod shapes;
 mod tables;
