@@ -10,8 +10,7 @@
 //! never dropped silently.
 
 use crate::bsdf::{
-    Bsdf, MetallicRoughness, MicrofacetDistribution, Plastic, Principled, PrincipledParameters,
-    RoughPlastic,
+    Bsdf, MetallicRoughness, MicrofacetDistribution, Plastic, Principled, RoughPlastic,
 };
 use crate::shading::MaterialTextures;
 use crate::shape::SurfaceHit;
@@ -152,33 +151,7 @@ impl Material {
                 MetallicRoughness::new(base_color, metallic, roughness, transmission, ior)
                     .with_specular(specular, specular_color),
             )),
-            BsdfDesc::Principled {
-                base_color,
-                roughness,
-                anisotropic,
-                metallic,
-                spec_trans,
-                eta,
-                spec_tint,
-                sheen,
-                sheen_tint,
-                flatness,
-                clearcoat,
-                clearcoat_gloss,
-            } => Some(Bsdf::Principled(Principled::new(PrincipledParameters {
-                base_color,
-                roughness,
-                anisotropic,
-                metallic,
-                spec_trans,
-                eta,
-                spec_tint,
-                sheen,
-                sheen_tint,
-                flatness,
-                clearcoat,
-                clearcoat_gloss,
-            }))),
+            BsdfDesc::Principled(p) => Some(Bsdf::Principled(Principled::new(p))),
         };
         let (textures, unusable) =
             MaterialTextures::from_slots(&desc.textures, bsdf.as_ref(), textures_cache);

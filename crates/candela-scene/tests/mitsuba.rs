@@ -6,7 +6,7 @@
 
 use candela_scene::{
     load, Alpha, BsdfDesc, ColorSpace, EnvironmentDesc, FilterHint, LightKind, LoadOptions, Loaded,
-    MicrofacetModel, PerturbationRules, Projection, SpotEdge,
+    MicrofacetModel, PerturbationRules, PrincipledParameters, Projection, SpotEdge,
 };
 use glam::Vec3;
 use proptest::prelude::*;
@@ -250,7 +250,7 @@ fn principled_reads_every_parameter_and_mitsubas_ior_rules() {
 </scene>"#;
     std::fs::write(&path, body).unwrap();
     let l = load(&path, &LoadOptions::default()).unwrap();
-    let BsdfDesc::Principled {
+    let BsdfDesc::Principled(PrincipledParameters {
         base_color,
         roughness,
         anisotropic,
@@ -263,7 +263,7 @@ fn principled_reads_every_parameter_and_mitsubas_ior_rules() {
         flatness,
         clearcoat,
         clearcoat_gloss,
-    } = l.scene.materials[0].bsdf
+    }) = l.scene.materials[0].bsdf
     else {
         panic!("{:?}", l.scene.materials[0].bsdf)
     };
@@ -293,7 +293,7 @@ fn principled_reads_every_parameter_and_mitsubas_ior_rules() {
     let etas: Vec<f32> = l.scene.materials[1..]
         .iter()
         .map(|m| match m.bsdf {
-            BsdfDesc::Principled { eta, .. } => eta,
+            BsdfDesc::Principled(p) => p.eta,
             _ => f32::NAN,
         })
         .collect();

@@ -337,21 +337,7 @@ impl MetallicRoughness {
             let u = ((u1 - c.specular - c.diffuse) / c.glass).clamp(0.0, 1.0 - f32::EPSILON);
             (self.glass().sample(wo, u, u2)?.wi, BsdfFlags::GLOSSY)
         };
-        let pdf = self.pdf(wo, wi);
-        if !(pdf > 0.0 && pdf.is_finite()) {
-            return None;
-        }
-        let side = if wi.z * wo.z < 0.0 {
-            BsdfFlags::TRANSMISSION
-        } else {
-            BsdfFlags::REFLECTION
-        };
-        Some(BsdfSample {
-            wi,
-            f: self.f(wo, wi),
-            pdf,
-            flags: side.union(lobe),
-        })
+        BsdfSample::of_mixture(wo, wi, lobe, self.pdf(wo, wi), || self.f(wo, wi))
     }
 
     /// A representative colour: the base colour.

@@ -110,6 +110,34 @@ pub struct BsdfSample {
 }
 
 impl BsdfSample {
+    /// The sample of a mixture of lobes at `wi`, drawn from lobe `lobe`:
+    /// valued and weighed by the whole mixture (`f`, `pdf`: every lobe's
+    /// value and density there, as one-sample MIS needs), reflection or
+    /// transmission by the side of `wi`; `None` where the density is zero
+    /// or not finite.
+    pub(super) fn of_mixture(
+        wo: Vec3,
+        wi: Vec3,
+        lobe: BsdfFlags,
+        pdf: f32,
+        f: impl FnOnce() -> Vec3,
+    ) -> Option<Self> {
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            return None;
+        }
+        let side = if wi.z * wo.z < 0.0 {
+            BsdfFlags::TRANSMISSION
+        } else {
+            BsdfFlags::REFLECTION
+        };
+        Some(Self {
+            wi,
+            f: f(),
+            pdf,
+            flags: side.union(lobe),
+        })
+    }
+
     /// The throughput multiplier `f·|cos θi| / pdf`.
     pub fn weight(&self) -> Vec3 {
         self.f * (self.wi.z.abs() / self.pdf)

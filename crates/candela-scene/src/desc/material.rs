@@ -375,33 +375,58 @@ pub enum BsdfDesc {
         specular_color: Vec3,
     },
     /// The principled BSDF (Burley 2012/2015) as Mitsuba 3's `principled`
-    /// defines it; every parameter but `eta` in [0, 1].
-    Principled {
-        /// Base colour (linear), per channel.
-        base_color: Vec3,
-        /// Roughness (α = roughness²).
-        roughness: f32,
-        /// Anisotropy (0 isotropic).
-        anisotropic: f32,
-        /// Metalness.
-        metallic: f32,
-        /// Fraction of the dielectric part that is transmitted.
-        spec_trans: f32,
-        /// Index of refraction of the inside relative to the outside.
-        eta: f32,
-        /// Fraction of the dielectric reflection tinted by the base colour.
-        spec_tint: f32,
-        /// Strength of the sheen lobe.
-        sheen: f32,
-        /// Fraction of the sheen tinted by the base colour.
-        sheen_tint: f32,
-        /// Blend of the diffuse toward the flattened "subsurface" shape.
-        flatness: f32,
-        /// Strength of the clearcoat lobe.
-        clearcoat: f32,
-        /// Gloss of the clearcoat.
-        clearcoat_gloss: f32,
-    },
+    /// defines it.
+    Principled(PrincipledParameters),
+}
+
+/// The principled BSDF's parameters, Mitsuba's names and defaults; every
+/// one but `eta` in [0, 1] (the renderer clamps them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrincipledParameters {
+    /// Base colour (linear), per channel. Default 0.5.
+    pub base_color: Vec3,
+    /// Roughness (α = roughness²). Default 0.5.
+    pub roughness: f32,
+    /// Anisotropy (0 isotropic).
+    pub anisotropic: f32,
+    /// Metalness.
+    pub metallic: f32,
+    /// Fraction of the dielectric part that is transmitted.
+    pub spec_trans: f32,
+    /// Index of refraction of the inside relative to the outside. Default
+    /// 1.5 (`specular` 0.5).
+    pub eta: f32,
+    /// Fraction of the dielectric reflection tinted by the base colour.
+    pub spec_tint: f32,
+    /// Strength of the sheen lobe.
+    pub sheen: f32,
+    /// Fraction of the sheen tinted by the base colour.
+    pub sheen_tint: f32,
+    /// Blend of the diffuse toward the flattened "subsurface" shape.
+    pub flatness: f32,
+    /// Strength of the clearcoat lobe.
+    pub clearcoat: f32,
+    /// Gloss of the clearcoat (0: α = 0.1, 1: α = 0.001).
+    pub clearcoat_gloss: f32,
+}
+
+impl Default for PrincipledParameters {
+    fn default() -> Self {
+        Self {
+            base_color: Vec3::splat(0.5),
+            roughness: 0.5,
+            anisotropic: 0.0,
+            metallic: 0.0,
+            spec_trans: 0.0,
+            eta: 1.5,
+            spec_tint: 0.0,
+            sheen: 0.0,
+            sheen_tint: 0.0,
+            flatness: 0.0,
+            clearcoat: 0.0,
+            clearcoat_gloss: 0.0,
+        }
+    }
 }
 
 /// The roughness α of a microfacet distribution along the two tangent

@@ -10,7 +10,7 @@
 use super::doc::{Doc, XNode};
 use super::values::float_of;
 use super::Builder;
-use crate::desc::{BsdfDesc, TextureSlot, TextureSlots};
+use crate::desc::{BsdfDesc, PrincipledParameters, TextureSlot, TextureSlots};
 use crate::error::{ErrorKind, LoadError};
 use glam::Vec3;
 
@@ -43,7 +43,7 @@ impl Builder {
             Ok::<f32, LoadError>(b.constant(doc, node, name, Vec3::ZERO)?.x)
         };
         let spec_trans = scalar(self, "spec_trans")?;
-        let desc = BsdfDesc::Principled {
+        let desc = BsdfDesc::Principled(PrincipledParameters {
             base_color,
             roughness,
             anisotropic: scalar(self, "anisotropic")?,
@@ -56,7 +56,7 @@ impl Builder {
             flatness: scalar(self, "flatness")?,
             clearcoat: scalar(self, "clearcoat")?,
             clearcoat_gloss: scalar(self, "clearcoat_gloss")?,
-        };
+        });
         for name in SAMPLING_RATES {
             if let Some(p) = doc.prop(node, name)? {
                 self.warn(

@@ -85,53 +85,9 @@ use super::rough_dielectric::RoughDielectric;
 use super::{BsdfFlags, BsdfSample};
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 
-/// The principled BSDF's parameters, Mitsuba's names and defaults.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PrincipledParameters {
-    /// Base colour (linear), per channel in [0, 1]. Default 0.5.
-    pub base_color: Vec3,
-    /// Roughness in [0, 1] (α = roughness²). Default 0.5.
-    pub roughness: f32,
-    /// Anisotropy in [0, 1] (0 isotropic).
-    pub anisotropic: f32,
-    /// Metalness in [0, 1].
-    pub metallic: f32,
-    /// Fraction of the dielectric part that is transmitted, in [0, 1].
-    pub spec_trans: f32,
-    /// Relative IOR, inside over outside. Default 1.5 (`specular` 0.5).
-    pub eta: f32,
-    /// Fraction of the dielectric reflection tinted by the base colour.
-    pub spec_tint: f32,
-    /// Strength of the sheen lobe.
-    pub sheen: f32,
-    /// Fraction of the sheen tinted by the base colour.
-    pub sheen_tint: f32,
-    /// Blend of the diffuse toward the flattened "subsurface" shape.
-    pub flatness: f32,
-    /// Strength of the clearcoat lobe.
-    pub clearcoat: f32,
-    /// Gloss of the clearcoat (0: α = 0.1, 1: α = 0.001).
-    pub clearcoat_gloss: f32,
-}
-
-impl Default for PrincipledParameters {
-    fn default() -> Self {
-        Self {
-            base_color: Vec3::splat(0.5),
-            roughness: 0.5,
-            anisotropic: 0.0,
-            metallic: 0.0,
-            spec_trans: 0.0,
-            eta: 1.5,
-            spec_tint: 0.0,
-            sheen: 0.0,
-            sheen_tint: 0.0,
-            flatness: 0.0,
-            clearcoat: 0.0,
-            clearcoat_gloss: 0.0,
-        }
-    }
-}
+/// The parameters, as the scene description defines them (Mitsuba's
+/// names and defaults).
+pub use candela_scene::PrincipledParameters;
 
 /// The principled BSDF with parameters in their ranges (see
 /// [`Principled::new`]).
@@ -371,21 +327,7 @@ impl Principled {
         let flip = wo.z < 0.0 && self.transmission_weight() <= 0.0;
         let (wi, lobe) = self.sample_direction(if flip { mirror(wo) } else { wo }, u1, u2)?;
         let wi = if flip { mirror(wi) } else { wi };
-        let pdf = self.pdf(wo, wi);
-        if !(pdf > 0.0 && pdf.is_finite()) {
-            return None;
-        }
-        let side = if wi.z * wo.z < 0.0 {
-            BsdfFlags::TRANSMISSION
-        } else {
-            BsdfFlags::REFLECTION
-        };
-        Some(BsdfSample {
-            wi,
-            f: self.f(wo, wi),
-            pdf,
-            flags: side | lobe,
-        })
+        BsdfSample::of_mixture(wo, wi, lobe, self.pdf(wo, wi), || self.f(wo, wi))
     }
 
     /// A direction from the lobe `u1` picks (`wo` as evaluated: outside
