@@ -158,6 +158,15 @@ impl Terminator {
         if self.alpha2 == 0.0 {
             return 1.0;
         }
+        self.shadowed(wi)
+    }
+
+    /// [`Terminator::factor`] where there is shadowing. Out of line: inlined,
+    /// the compiler evaluated it (a square root, two divisions) for every
+    /// light sample of every surface and selected 1 without a map.
+    #[cold]
+    #[inline(never)]
+    fn shadowed(&self, wi: Vec3) -> f32 {
         let t2 = tan2(wi.dot(self.normal).powi(2));
         2.0 / (1.0 + (1.0 + self.alpha2 * t2).sqrt())
     }
