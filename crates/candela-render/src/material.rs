@@ -10,7 +10,7 @@
 //! never dropped silently.
 
 use crate::bsdf::{
-    Bsdf, MetallicRoughness, MicrofacetDistribution, Plastic, Principled, RoughPlastic,
+    Bsdf, Masking, MetallicRoughness, MicrofacetDistribution, Plastic, Principled, RoughPlastic,
 };
 use crate::shading::MaterialTextures;
 use crate::shape::SurfaceHit;
@@ -85,17 +85,20 @@ impl Material {
             } => Some(Bsdf::Refraction { transmittance, ior }),
             BsdfDesc::Microfacet { alpha, eta, k } => Some(Bsdf::Microfacet {
                 distribution: MicrofacetDistribution::beckmann(alpha),
+                masking: Masking::HeightCorrelated,
                 eta,
                 k,
             }),
             BsdfDesc::RoughDielectric {
                 distribution,
+                masking,
                 alpha,
                 ior,
                 reflectance,
                 transmittance,
             } => Some(Bsdf::RoughGlass {
                 distribution: microfacets(distribution, alpha),
+                masking,
                 reflectance,
                 transmittance,
                 ior,
@@ -115,10 +118,12 @@ impl Material {
                 ior,
                 alpha,
                 distribution,
+                masking,
                 nonlinear,
             } => Some(if alpha > 0.0 {
-                Bsdf::RoughPlastic(RoughPlastic::new(
+                Bsdf::RoughPlastic(RoughPlastic::with_masking(
                     microfacets(distribution, Alpha::isotropic(alpha)),
+                    masking,
                     diffuse,
                     specular,
                     ior,
@@ -129,11 +134,13 @@ impl Material {
             }),
             BsdfDesc::Conductor {
                 distribution,
+                masking,
                 alpha,
                 eta,
                 k,
             } if alpha.is_rough() => Some(Bsdf::Microfacet {
                 distribution: microfacets(distribution, alpha),
+                masking,
                 eta,
                 k,
             }),
@@ -236,6 +243,7 @@ fn glass(reflectance: Vec3, transmittance: Vec3, roughness: f32, ior: f32) -> Bs
     if roughness > 0.0 {
         Bsdf::RoughGlass {
             distribution: MicrofacetDistribution::beckmann(roughness),
+            masking: Masking::HeightCorrelated,
             reflectance,
             transmittance,
             ior,

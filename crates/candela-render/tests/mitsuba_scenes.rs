@@ -194,15 +194,18 @@ fn the_new_bsdf_descriptions_map_to_the_renderers_bsdfs() {
     };
     let ggx = MicrofacetModel::Ggx;
     let one = Vec3::ONE;
+    let separable = candela_scene::Masking::Separable;
     let (b, n) = map(BsdfDesc::RoughDielectric {
         distribution: ggx,
+        masking: separable,
         alpha: candela_scene::Alpha::isotropic(0.3),
         ior: 1.5,
         reflectance: one,
         transmittance: one,
     });
     assert!(
-        matches!(b, Bsdf::RoughGlass { distribution, .. } if distribution.alphas() == (0.3, 0.3))
+        matches!(b, Bsdf::RoughGlass { distribution, masking, .. }
+            if distribution.alphas() == (0.3, 0.3) && masking == separable)
             && n == 0
     );
     let (b, _) = map(BsdfDesc::ThinDielectric {
@@ -217,19 +220,21 @@ fn the_new_bsdf_descriptions_map_to_the_renderers_bsdfs() {
         ior: 1.49,
         alpha,
         distribution: MicrofacetModel::Beckmann,
+        masking: separable,
         nonlinear: false,
     };
     assert!(matches!(map(plastic(0.0)), (Bsdf::Plastic(_), 0)));
     assert!(matches!(map(plastic(0.2)), (Bsdf::RoughPlastic(_), 0)));
     let conductor = |alpha: f32, eta: Vec3, k: Vec3| BsdfDesc::Conductor {
         distribution: ggx,
+        masking: separable,
         alpha: candela_scene::Alpha::isotropic(alpha),
         eta,
         k,
     };
     assert!(matches!(
         map(conductor(0.2, one, one)).0,
-        Bsdf::Microfacet { .. }
+        Bsdf::Microfacet { masking, .. } if masking == separable
     ));
     // Smooth: a delta conductor with the complex Fresnel term.
     assert_eq!(

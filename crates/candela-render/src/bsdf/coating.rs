@@ -28,7 +28,7 @@ use std::sync::Mutex;
 
 use glam::{Vec2, Vec3};
 
-use super::distribution::MicrofacetDistribution;
+use super::distribution::{Masking, MicrofacetDistribution};
 use super::fresnel::{fresnel_dielectric, refract};
 
 /// Entries of T(μ), at μ = j / (N − 1).
@@ -44,27 +44,29 @@ const MIN_COSINE: f32 = 1e-4;
 #[derive(Debug, PartialEq)]
 pub(crate) struct CoatingTable {
     dist: MicrofacetDistribution,
+    masking: Masking,
     ior: f32,
     transmittance: [f32; TABLE_SIZE],
     internal_reflectance: f32,
 }
 
 impl CoatingTable {
-    fn compute(dist: MicrofacetDistribution, ior: f32) -> Self {
+    fn compute(dist: MicrofacetDistribution, masking: Masking, ior: f32) -> Self {
         let mut transmittance = [0.0; TABLE_SIZE];
         for (j, t) in transmittance.iter_mut().enumerate() {
             let mu = (j as f32 / (TABLE_SIZE - 1) as f32).max(MIN_COSINE);
-            *t = transmission_albedo(dist, ior, mu, GRID).clamp(0.0, 1.0);
+            *t = transmission_albedo(dist, masking, ior, mu, GRID).clamp(0.0, 1.0);
         }
         let internal_reflectance = (0..INTERNAL_NODES)
             .map(|j| {
                 let mu = (j as f32 + 0.5) / INTERNAL_NODES as f32;
-                2.0 * mu * reflection_albedo(dist, 1.0 / ior, mu, GRID / 2)
+                2.0 * mu * reflection_albedo(dist, masking, 1.0 / ior, mu, GRID / 2)
             })
             .sum::<f32>()
             / INTERNAL_NODES as f32;
         Self {
             dist,
+            masking,
             ior,
             transmittance,
             internal_reflectance: internal_reflectance.clamp(0.0, 1.0),
@@ -91,13 +93,14 @@ impl CoatingTable {
 /// by a `grid` × `grid` midpoint rule over the visible normals.
 pub(crate) fn reflection_albedo(
     dist: MicrofacetDistribution,
+    masking: Masking,
     eta: f32,
     mu: f32,
     grid: usize,
 ) -> f32 {
     visible_normal_mean(dist, mu, grid, |wo, m, cos_om| {
         let wi = 2.0 * cos_om * m - wo;
-        (wi.z > 0.0).then(|| fresnel_dielectric(cos_om, eta) * dist.g2(wo, wi))
+        (wi.z > 0.0).then(|| fresnel_dielectric(cos_om, eta) * dist.masking(masking, wo, wi))
     })
 }
 
@@ -105,6 +108,7 @@ pub(crate) fn reflection_albedo(
 /// from cosine `mu`, by the same rule as [`reflection_albedo`].
 pub(crate) fn transmission_albedo(
     dist: MicrofacetDistribution,
+    masking: Masking,
     eta: f32,
     mu: f32,
     grid: usize,
@@ -112,7 +116,8 @@ pub(crate) fn transmission_albedo(
     visible_normal_mean(dist, mu, grid, |wo, m, cos_om| {
         // None at total internal reflection on this microfacet.
         let wt = refract(wo, m, eta)?;
-        (wt.z < 0.0).then(|| (1.0 - fresnel_dielectric(cos_om, eta)) * dist.g2(wo, wt))
+        (wt.z < 0.0)
+            .then(|| (1.0 - fresnel_dielectric(cos_om, eta)) * dist.masking(masking, wo, wt))
     })
 }
 
@@ -152,14 +157,22 @@ static TABLES: Mutex<Vec<&'static CoatingTable>> = Mutex::new(Vec::new());
 
 /// The table for a coating of distribution `dist` and IOR `ior` (inside
 /// over outside), computed on first use.
-pub(crate) fn coating_table(dist: MicrofacetDistribution, ior: f32) -> &'static CoatingTable {
+pub(crate) fn coating_table(
+    dist: MicrofacetDistribution,
+    masking: Masking,
+    ior: f32,
+) -> &'static CoatingTable {
     // A poisoned lock only means another thread panicked while pushing a
     // finished table: the list is still valid.
     let mut tables = TABLES.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(t) = tables.iter().find(|t| t.dist == dist && t.ior == ior) {
+    if let Some(t) = tables
+        .iter()
+        .find(|t| t.dist == dist && t.masking == masking && t.ior == ior)
+    {
         return t;
     }
-    let table: &'static CoatingTable = Box::leak(Box::new(CoatingTable::compute(dist, ior)));
+    let table: &'static CoatingTable =
+        Box::leak(Box::new(CoatingTable::compute(dist, masking, ior)));
     tables.push(table);
     table
 }

@@ -26,19 +26,9 @@ use super::{beckmann, ggx};
 /// and the lobe is indistinguishable from a mirror anyway.
 pub const MIN_ALPHA: f32 = 1e-3;
 
-/// How the masking of the two directions of a pair combines into G2.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) enum Masking {
-    /// G2 = 1 / (1 + Λ(wo) + Λ(wi)) (Heitz 2014): masking and shadowing by
-    /// the same heights counted once. Our default.
-    #[default]
-    HeightCorrelated,
-    /// G2 = G1(wo)·G1(wi), as if the two were independent: at most the
-    /// height-correlated form, so it loses a little more energy at grazing
-    /// angles. Burley 2012 and Mitsuba 3 (every microfacet BSDF) use it; the
-    /// principled BSDF keeps it so that its scenes render as in Mitsuba.
-    Separable,
-}
+/// How the masking of the two directions of a pair combines into G2 (the
+/// scene description's choice, by the file's renderer).
+pub use candela_scene::Masking;
 
 /// A distribution of microfacet normals with roughness α along the tangent
 /// (x) and bitangent (y) axes of the shading frame (equal: isotropic).

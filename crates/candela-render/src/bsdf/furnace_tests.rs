@@ -29,6 +29,7 @@
 use glam::Vec3;
 
 use super::test_support::energy_albedo_by_sampling;
+use super::Masking;
 use super::{Bsdf, MicrofacetDistribution};
 
 const ALPHAS: [f32; 7] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0];
@@ -41,6 +42,7 @@ type FurnaceModel = fn(MicrofacetDistribution) -> Bsdf;
 fn furnace_conductor(distribution: MicrofacetDistribution) -> Bsdf {
     Bsdf::Microfacet {
         distribution,
+        masking: Masking::HeightCorrelated,
         eta: Vec3::ZERO,
         k: Vec3::ONE,
     }
@@ -49,6 +51,7 @@ fn furnace_conductor(distribution: MicrofacetDistribution) -> Bsdf {
 fn furnace_glass(distribution: MicrofacetDistribution) -> Bsdf {
     Bsdf::RoughGlass {
         distribution,
+        masking: Masking::HeightCorrelated,
         reflectance: Vec3::ONE,
         transmittance: Vec3::ONE,
         ior: IOR,

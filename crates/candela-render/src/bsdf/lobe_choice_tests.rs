@@ -6,6 +6,7 @@
 use glam::{Vec2, Vec3};
 
 use super::test_support::{test_directions, uniforms};
+use super::Masking;
 use super::{Bsdf, MicrofacetDistribution};
 use crate::sampling::{Sampler, SamplerKind};
 
@@ -26,11 +27,13 @@ fn one_lobe_bsdfs() -> [Bsdf; 6] {
         Bsdf::Conductor { eta, k },
         Bsdf::Microfacet {
             distribution: MicrofacetDistribution::beckmann(0.3),
+            masking: Masking::HeightCorrelated,
             eta,
             k,
         },
         Bsdf::Microfacet {
             distribution: MicrofacetDistribution::ggx(0.3),
+            masking: Masking::HeightCorrelated,
             eta,
             k,
         },

@@ -2,8 +2,9 @@
 //! GGX distribution (see `distribution.rs`).
 //!
 //! f(wo, wi) = D(h) · G2(wo, wi) · F(wo·h) / (4 cos θo cos θi), with D the
-//! distribution of normals, G2 the height-correlated Smith
-//! masking-shadowing, and F the exact conductor Fresnel term per channel.
+//! distribution of normals, G2 the Smith masking-shadowing (height-correlated,
+//! or separable G1·G1 where the scene's renderer uses it: `Masking`), and F
+//! the exact conductor Fresnel term per channel.
 //!
 //! Sampling draws a normal visible from `wo` and reflects `wo` about it,
 //! giving the density G1(wo)·D(h) / (4 cos θo). Reflections that go below
@@ -12,7 +13,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::distribution::MicrofacetDistribution;
+use super::distribution::{Masking, MicrofacetDistribution};
 use super::fresnel::fresnel_conductor;
 use super::{BsdfFlags, BsdfSample};
 
@@ -34,13 +35,20 @@ pub(super) fn to_upper(wo: Vec3, wi: Vec3) -> (Vec3, Vec3, f32) {
 }
 
 /// The rough conductor BSDF value (cosine excluded).
-pub(super) fn f(dist: MicrofacetDistribution, eta: Vec3, k: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
+pub(super) fn f(
+    dist: MicrofacetDistribution,
+    masking: Masking,
+    eta: Vec3,
+    k: Vec3,
+    wo: Vec3,
+    wi: Vec3,
+) -> Vec3 {
     let (wo, wi, _) = to_upper(wo, wi);
     if wo.z <= 0.0 || wi.z <= 0.0 {
         return Vec3::ZERO;
     }
     let h = (wo + wi).normalize();
-    let scalar = dist.d(h) * dist.g2(wo, wi) / (4.0 * wo.z * wi.z);
+    let scalar = dist.d(h) * dist.masking(masking, wo, wi) / (4.0 * wo.z * wi.z);
     fresnel_conductor(wo.dot(h), eta, k) * scalar
 }
 
@@ -58,6 +66,7 @@ pub(super) fn pdf(dist: MicrofacetDistribution, wo: Vec3, wi: Vec3) -> f32 {
 /// Samples a visible normal and reflects `wo` about it.
 pub(super) fn sample(
     dist: MicrofacetDistribution,
+    masking: Masking,
     eta: Vec3,
     k: Vec3,
     wo: Vec3,
@@ -67,7 +76,7 @@ pub(super) fn sample(
     let pdf = pdf(dist, wo, wi);
     (pdf > 0.0 && pdf.is_finite()).then(|| BsdfSample {
         wi,
-        f: f(dist, eta, k, wo, wi),
+        f: f(dist, masking, eta, k, wo, wi),
         pdf,
         flags: FLAGS,
     })

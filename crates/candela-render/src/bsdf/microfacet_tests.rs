@@ -3,6 +3,7 @@
 use glam::Vec3;
 
 use super::test_support::*;
+use super::Masking;
 use super::{Bsdf, MicrofacetDistribution};
 
 /// Gold-like complex IOR (RGB), as in CS184's scenes.
@@ -16,6 +17,7 @@ fn gold(alpha: f32) -> Bsdf {
 fn gold_on(distribution: MicrofacetDistribution) -> Bsdf {
     Bsdf::Microfacet {
         distribution,
+        masking: Masking::HeightCorrelated,
         eta: GOLD_ETA,
         k: GOLD_K,
     }
@@ -29,6 +31,7 @@ fn furnace(alpha: f32) -> Bsdf {
 fn furnace_on(distribution: MicrofacetDistribution) -> Bsdf {
     Bsdf::Microfacet {
         distribution,
+        masking: Masking::HeightCorrelated,
         eta: Vec3::ZERO,
         k: Vec3::ONE,
     }

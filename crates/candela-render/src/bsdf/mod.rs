@@ -54,6 +54,8 @@ mod furnace_tests;
 mod ggx;
 #[cfg(test)]
 mod lobe_choice_tests;
+#[cfg(test)]
+mod masking_tests;
 mod metallic_roughness;
 #[cfg(test)]
 mod metallic_roughness_tests;
@@ -82,7 +84,7 @@ mod transport;
 #[cfg(test)]
 mod transport_tests;
 
-use distribution::Masking;
+pub use distribution::Masking;
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;
 pub use metallic_roughness::MetallicRoughness;
@@ -206,6 +208,8 @@ pub enum Bsdf {
     RoughGlass {
         /// The distribution of microfacet normals.
         distribution: MicrofacetDistribution,
+        /// How its masking combines.
+        masking: Masking,
         /// Tint of the reflected light.
         reflectance: Vec3,
         /// Tint of the refracted light.
@@ -232,12 +236,13 @@ pub enum Bsdf {
         k: Vec3,
     },
     /// Rough conductor: Beckmann or GGX microfacets, exact conductor
-    /// Fresnel, height-correlated Smith masking-shadowing (see
-    /// `microfacet.rs`).
+    /// Fresnel, Smith masking-shadowing (see `microfacet.rs`).
     Microfacet {
         /// The distribution of microfacet normals (CS184's `<microfacet>`:
         /// isotropic Beckmann).
         distribution: MicrofacetDistribution,
+        /// How its masking combines.
+        masking: Masking,
         /// Real part of the conductor's IOR, per channel.
         eta: Vec3,
         /// Imaginary part (extinction coefficient), per channel.
@@ -337,9 +342,10 @@ impl Bsdf {
             Bsdf::RoughPlastic(plastic) => plastic.f(wo, wi),
             Bsdf::Microfacet {
                 distribution,
+                masking,
                 eta,
                 k,
-            } => microfacet::f(distribution, eta, k, wo, wi),
+            } => microfacet::f(distribution, masking, eta, k, wo, wi),
             Bsdf::MetallicRoughness(m) => m.f(wo, wi),
             Bsdf::Principled(p) => p.f(wo, wi),
         }
@@ -401,9 +407,10 @@ impl Bsdf {
             Bsdf::Conductor { eta, k } => specular::sample_conductor(eta, k, wo),
             Bsdf::Microfacet {
                 distribution,
+                masking,
                 eta,
                 k,
-            } => microfacet::sample(distribution, eta, k, wo, u2),
+            } => microfacet::sample(distribution, masking, eta, k, wo, u2),
             Bsdf::MetallicRoughness(m) => m.sample(wo, u1, u2),
             Bsdf::Principled(p) => p.sample(wo, u1, u2),
         }
@@ -467,6 +474,7 @@ impl Bsdf {
         match *self {
             Bsdf::RoughGlass {
                 distribution,
+                masking,
                 reflectance,
                 transmittance,
                 ior,
@@ -475,7 +483,7 @@ impl Bsdf {
                 reflectance,
                 transmittance,
                 ior,
-                masking: Masking::HeightCorrelated,
+                masking,
             }),
             _ => None,
         }

@@ -5,6 +5,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::fresnel_dielectric;
 use super::test_support::*;
+use super::Masking;
 use super::{Bsdf, MicrofacetDistribution};
 use crate::sampling::{Sampler, SamplerKind};
 
@@ -13,6 +14,7 @@ const IOR: f32 = 1.5;
 fn rough_glass(distribution: MicrofacetDistribution) -> Bsdf {
     Bsdf::RoughGlass {
         distribution,
+        masking: Masking::HeightCorrelated,
         reflectance: Vec3::new(0.9, 0.8, 1.0),
         transmittance: Vec3::new(1.0, 0.7, 0.9),
         ior: IOR,
@@ -22,6 +24,7 @@ fn rough_glass(distribution: MicrofacetDistribution) -> Bsdf {
 fn white_glass(distribution: MicrofacetDistribution) -> Bsdf {
     Bsdf::RoughGlass {
         distribution,
+        masking: Masking::HeightCorrelated,
         reflectance: Vec3::ONE,
         transmittance: Vec3::ONE,
         ior: IOR,

@@ -6,8 +6,10 @@
 //! f = f_coat + f_base, cosine excluded, both directions on one side:
 //! - f_coat(wo, wi) = s · F(wo·h) D(h) G2(wo, wi) / (4 cos θo cos θi): the
 //!   coating's microfacet reflection (h the half vector, F the exact
-//!   dielectric Fresnel term, G2 height-correlated Smith: Mitsuba uses the
-//!   separable G1·G1, a difference of a few percent at grazing angles);
+//!   dielectric Fresnel term, G2 the Smith masking-shadowing, combined as
+//!   the description's `Masking` says: height-correlated by default,
+//!   separable G1·G1 for Mitsuba's scenes, a difference of a few percent at
+//!   grazing angles; the coating's table follows the same choice);
 //! - f_base(wo, wi) = ρ' T(cos θo) T(cos θi) / (π η²): light that the
 //!   coating lets in (T the energy of the rough dielectric's refraction
 //!   lobe, see `coating.rs`), scattered by the base, let out again; 1/η² is
@@ -47,7 +49,7 @@ use std::f32::consts::FRAC_1_PI;
 use glam::{Vec2, Vec3};
 
 use super::coating::{coating_table, CoatingTable};
-use super::distribution::MicrofacetDistribution;
+use super::distribution::{Masking, MicrofacetDistribution};
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::to_upper;
 use super::{diffuse, BsdfFlags, BsdfSample};
@@ -62,6 +64,7 @@ pub(super) const FLAGS: BsdfFlags = COATING_FLAGS.union(diffuse::FLAGS);
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoughPlastic {
     dist: MicrofacetDistribution,
+    masking: Masking,
     diffuse: Vec3,
     specular: Vec3,
     ior: f32,
@@ -84,8 +87,28 @@ impl RoughPlastic {
         ior: f32,
         nonlinear: bool,
     ) -> Self {
+        Self::with_masking(
+            dist,
+            Masking::HeightCorrelated,
+            diffuse,
+            specular,
+            ior,
+            nonlinear,
+        )
+    }
+
+    /// [`RoughPlastic::new`] with the coating's masking combined as
+    /// `masking` says (in its lobe and its table).
+    pub fn with_masking(
+        dist: MicrofacetDistribution,
+        masking: Masking,
+        diffuse: Vec3,
+        specular: Vec3,
+        ior: f32,
+        nonlinear: bool,
+    ) -> Self {
         let diffuse = diffuse.clamp(Vec3::ZERO, Vec3::ONE);
-        let coating = coating_table(dist, ior);
+        let coating = coating_table(dist, masking, ior);
         let f_int = coating.internal_reflectance();
         let round_trips = if nonlinear {
             Vec3::ONE - f_int * diffuse
@@ -96,6 +119,7 @@ impl RoughPlastic {
         let (d, s) = (diffuse.element_sum(), specular.element_sum());
         Self {
             dist,
+            masking,
             diffuse,
             specular,
             ior,
@@ -135,7 +159,9 @@ impl RoughPlastic {
             return Vec3::ZERO;
         }
         let h = (wo + wi).normalize();
-        let coat = fresnel_dielectric(wo.dot(h), self.ior) * self.dist.d(h) * self.dist.g2(wo, wi)
+        let coat = fresnel_dielectric(wo.dot(h), self.ior)
+            * self.dist.d(h)
+            * self.dist.masking(self.masking, wo, wi)
             / (4.0 * wo.z * wi.z);
         let base = self.coating.transmittance(wo.z) * self.coating.transmittance(wi.z);
         self.specular * coat + self.base_scale * base

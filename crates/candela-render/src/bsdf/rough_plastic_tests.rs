@@ -24,7 +24,7 @@ use glam::Vec3;
 use super::coating::{coating_table, reflection_albedo};
 use super::plastic::diffuse_fresnel_reflectance;
 use super::test_support::*;
-use super::{Bsdf, MicrofacetDistribution, RoughPlastic};
+use super::{Bsdf, Masking, MicrofacetDistribution, RoughPlastic};
 
 const IOR: f32 = 1.5;
 
@@ -124,18 +124,19 @@ fn coating_table_matches_quadrature() {
         let coat = coating_only(dist);
         let glass = Bsdf::RoughGlass {
             distribution: dist,
+            masking: Masking::HeightCorrelated,
             reflectance: Vec3::ONE,
             transmittance: Vec3::ONE,
             ior: IOR,
         };
-        let table = coating_table(dist, IOR);
+        let table = coating_table(dist, Masking::HeightCorrelated, IOR);
         for mu in [1.0f32, 0.8, 0.51, 0.25, 0.1] {
             let wo = Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
             let below = Vec3::new(wo.x, wo.y, -wo.z);
             let e = hemisphere_integral(wo, |wi| coat.f(wo, wi).x * wi.z.abs());
             let t = hemisphere_integral(below, |wi| glass.f(wo, wi).x * wi.z.abs() * IOR * IOR);
             let (e_table, t_table) = (
-                reflection_albedo(dist, IOR, mu, 64),
+                reflection_albedo(dist, Masking::HeightCorrelated, IOR, mu, 64),
                 table.transmittance(mu),
             );
             assert!(
@@ -157,7 +158,7 @@ fn smooth_coating_limit_matches_the_smooth_plastic() {
     // F_int to the smooth interface's internal diffuse reflectance (0.596
     // for η = 1.5).
     let dist = MicrofacetDistribution::ggx(0.002);
-    let table = coating_table(dist, IOR);
+    let table = coating_table(dist, Masking::HeightCorrelated, IOR);
     let smooth = diffuse_fresnel_reflectance(1.0 / IOR);
     assert!(
         (table.internal_reflectance() - smooth).abs() < 5e-3,
@@ -166,14 +167,17 @@ fn smooth_coating_limit_matches_the_smooth_plastic() {
     );
     for mu in [1.0f32, 0.5, 0.2] {
         let fresnel = super::fresnel::fresnel_dielectric(mu, IOR);
-        assert!((reflection_albedo(dist, IOR, mu, 32) - fresnel).abs() < 2e-3);
+        assert!(
+            (reflection_albedo(dist, Masking::HeightCorrelated, IOR, mu, 32) - fresnel).abs()
+                < 2e-3
+        );
     }
 }
 
 /// (E(μo), T(μo), R): the furnace albedo at ρ = 1 is exactly E + T R,
 /// R = T̄ / (η² (1 − F_int)) (1 for a smooth coating).
 fn furnace_prediction(dist: MicrofacetDistribution, mu: f32) -> (f32, f32, f32) {
-    let table = coating_table(dist, IOR);
+    let table = coating_table(dist, Masking::HeightCorrelated, IOR);
     let n = 256;
     let diffuse_transmittance: f32 = (0..n)
         .map(|j| {
@@ -184,7 +188,7 @@ fn furnace_prediction(dist: MicrofacetDistribution, mu: f32) -> (f32, f32, f32) 
         / n as f32;
     let ratio = diffuse_transmittance / (IOR * IOR * (1.0 - table.internal_reflectance()));
     (
-        reflection_albedo(dist, IOR, mu, 64),
+        reflection_albedo(dist, Masking::HeightCorrelated, IOR, mu, 64),
         table.transmittance(mu),
         ratio,
     )
@@ -239,7 +243,7 @@ fn nonlinear_mode_sums_the_round_trips() {
     // at ρ = 1, the nonlinear one darker for ρ < 1, in the ratio of the two
     // denominators; the coating lobe is the same.
     let dist = MicrofacetDistribution::beckmann(0.3);
-    let f_int = coating_table(dist, IOR).internal_reflectance();
+    let f_int = coating_table(dist, Masking::HeightCorrelated, IOR).internal_reflectance();
     let grey = |nonlinear| {
         Bsdf::RoughPlastic(RoughPlastic::new(
             dist,

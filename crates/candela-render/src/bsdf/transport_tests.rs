@@ -6,6 +6,7 @@
 use glam::{Vec2, Vec3};
 
 use super::transport::{shading_normal_correction, TransportMode};
+use super::Masking;
 use super::{Bsdf, MetallicRoughness, MicrofacetDistribution, Principled, PrincipledParameters};
 use crate::geometry::Frame;
 use crate::sampling::warp::square_to_uniform_sphere;
@@ -43,6 +44,7 @@ fn transmitting_bsdfs() -> Vec<(&'static str, Bsdf)> {
             "rough glass ggx",
             Bsdf::RoughGlass {
                 distribution: MicrofacetDistribution::ggx(0.3),
+                masking: Masking::HeightCorrelated,
                 reflectance: Vec3::new(0.9, 0.8, 1.0),
                 transmittance: Vec3::new(1.0, 0.7, 0.9),
                 ior: 1.5,
@@ -52,6 +54,7 @@ fn transmitting_bsdfs() -> Vec<(&'static str, Bsdf)> {
             "rough glass beckmann, ior < 1",
             Bsdf::RoughGlass {
                 distribution: MicrofacetDistribution::beckmann(0.5),
+                masking: Masking::HeightCorrelated,
                 reflectance: Vec3::ONE,
                 transmittance: Vec3::ONE,
                 ior: 0.8,

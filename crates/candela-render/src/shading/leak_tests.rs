@@ -6,6 +6,7 @@
 
 use super::normal_map::{keep_viewer_above, mapped_normal};
 use super::sample_scatter;
+use crate::bsdf::Masking;
 use crate::bsdf::{Bsdf, MetallicRoughness, MicrofacetDistribution};
 use crate::geometry::Frame;
 use crate::sampling::warp::{square_to_uniform_hemisphere, square_to_uniform_sphere};
@@ -19,12 +20,14 @@ fn models() -> [Bsdf; 4] {
         },
         Bsdf::Microfacet {
             distribution: MicrofacetDistribution::ggx(0.3),
+            masking: Masking::HeightCorrelated,
             eta: Vec3::splat(0.2),
             k: Vec3::splat(3.0),
         },
         Bsdf::MetallicRoughness(MetallicRoughness::new(Vec3::splat(0.6), 0.5, 0.5, 0.0, 1.5)),
         Bsdf::RoughGlass {
             distribution: MicrofacetDistribution::beckmann(0.2),
+            masking: Masking::HeightCorrelated,
             reflectance: Vec3::ONE,
             transmittance: Vec3::ONE,
             ior: 1.5,

@@ -57,6 +57,7 @@ fn scene() -> Scene {
         MaterialDesc {
             bsdf: BsdfDesc::Conductor {
                 distribution: MicrofacetModel::Ggx,
+                masking: candela_scene::Masking::HeightCorrelated,
                 alpha: Alpha { u: 0.05, v: 0.4 },
                 eta: Vec3::splat(0.2),
                 k: Vec3::splat(3.0),

@@ -19,7 +19,7 @@
 //! metalness outside the glTF and principled models, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
-use crate::bsdf::{Bsdf, MicrofacetDistribution};
+use crate::bsdf::{Bsdf, Masking, MicrofacetDistribution};
 use crate::texture::{SlotTexture, TextureCache};
 use candela_scene::{PerturbationRules, TextureSlot, TextureSlots};
 use glam::{Vec2, Vec3};
@@ -145,11 +145,13 @@ impl MaterialTextures {
             },
             Bsdf::RoughGlass {
                 distribution,
+                masking,
                 reflectance,
                 transmittance,
                 ior,
             } => Bsdf::RoughGlass {
                 distribution: roughness.map_or(distribution, |a| with_alpha(distribution, a)),
+                masking,
                 reflectance,
                 transmittance: color.unwrap_or(transmittance),
                 ior,
@@ -163,6 +165,7 @@ impl MaterialTextures {
                 match roughness {
                     Some(a) => Bsdf::Microfacet {
                         distribution: MicrofacetDistribution::beckmann(a),
+                        masking: Masking::HeightCorrelated,
                         eta,
                         k,
                     },
@@ -171,12 +174,14 @@ impl MaterialTextures {
             }
             Bsdf::Microfacet {
                 distribution,
+                masking,
                 eta,
                 k,
             } => {
                 let (eta, k) = color.map_or((eta, k), conductor_of_reflectance);
                 Bsdf::Microfacet {
                     distribution: roughness.map_or(distribution, |a| with_alpha(distribution, a)),
+                    masking,
                     eta,
                     k,
                 }
@@ -272,6 +277,7 @@ fn glass(reflectance: Vec3, transmittance: Vec3, roughness: Option<f32>, ior: f3
     match roughness {
         Some(alpha) => Bsdf::RoughGlass {
             distribution: MicrofacetDistribution::beckmann(alpha),
+            masking: Masking::HeightCorrelated,
             reflectance,
             transmittance,
             ior,

@@ -303,6 +303,8 @@ pub enum BsdfDesc {
     RoughDielectric {
         /// The microfacet distribution.
         distribution: MicrofacetModel,
+        /// How its masking combines.
+        masking: Masking,
         /// Roughness along u and v (> 0).
         alpha: Alpha,
         /// Index of refraction of the inside relative to the outside.
@@ -333,6 +335,8 @@ pub enum BsdfDesc {
         alpha: f32,
         /// The coating's microfacet distribution when rough.
         distribution: MicrofacetModel,
+        /// How the rough coating's masking combines.
+        masking: Masking,
         /// Whether the base's colour is renormalised by the physical sum of
         /// internal reflections, ρ/(1 − ρ F_int), which saturates colours
         /// (Mitsuba's `nonlinear`), instead of ρ/(1 − F_int) (the default).
@@ -343,6 +347,8 @@ pub enum BsdfDesc {
     Conductor {
         /// The microfacet distribution.
         distribution: MicrofacetModel,
+        /// How its masking combines when rough.
+        masking: Masking,
         /// Roughness along u and v (0 = smooth).
         alpha: Alpha,
         /// Real part of the complex index of refraction, per channel.
@@ -457,6 +463,21 @@ impl Alpha {
     pub fn is_rough(&self) -> bool {
         self.u > 0.0 && self.v > 0.0
     }
+}
+
+/// How a microfacet BSDF combines the masking of its two directions into
+/// G2: a convention of the renderer a file was written for, so the loader
+/// chooses it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Masking {
+    /// G2 = 1 / (1 + Λ(wo) + Λ(wi)) (Heitz 2014): masking and shadowing by
+    /// the same heights counted once, as pbrt-v4. The default.
+    #[default]
+    HeightCorrelated,
+    /// G2 = G1(wo)·G1(wi), as if the two were independent: at most the
+    /// height-correlated form, so it loses a little more energy at grazing
+    /// angles. Burley 2012 and Mitsuba 3 (every microfacet BSDF) use it.
+    Separable,
 }
 
 /// Microfacet normal distributions.

@@ -27,8 +27,8 @@ use super::doc::{elements, Doc, XNode};
 use super::values::{boolean, constant_color, float, float_of, string};
 use super::{tables, Builder};
 use crate::desc::{
-    Alpha, AwayFromViewer, BsdfDesc, ColorSpace, MaterialDesc, MicrofacetModel, PerturbationRules,
-    Sides, TextureRef, TextureSlot, TextureSlots,
+    Alpha, AwayFromViewer, BsdfDesc, ColorSpace, Masking, MaterialDesc, MicrofacetModel,
+    PerturbationRules, Sides, TextureRef, TextureSlot, TextureSlots,
 };
 use crate::error::{ErrorKind, LoadError};
 use glam::Vec3;
@@ -72,6 +72,7 @@ impl Builder {
             },
             "roughdielectric" => BsdfDesc::RoughDielectric {
                 distribution: distribution(doc, node)?,
+                masking: Masking::Separable,
                 alpha: self.alpha(doc, node, &mut textures)?,
                 reflectance: self.constant(doc, node, "specular_reflectance", Vec3::ONE)?,
                 transmittance: self.constant(doc, node, "specular_transmittance", Vec3::ONE)?,
@@ -109,6 +110,7 @@ impl Builder {
                     } else {
                         MicrofacetModel::Beckmann
                     },
+                    masking: Masking::Separable,
                     alpha: if rough {
                         self.alpha(doc, node, &mut textures)?
                     } else {
@@ -140,6 +142,7 @@ impl Builder {
                 )?;
                 BsdfDesc::Plastic {
                     diffuse,
+                    masking: Masking::Separable,
                     specular: self.constant(doc, node, "specular_reflectance", Vec3::ONE)?,
                     ior: int / ext,
                     alpha: if rough {
