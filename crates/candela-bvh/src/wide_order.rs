@@ -71,10 +71,10 @@ impl<const W: usize> WideBvh<W> {
                         .filter_map(|&p| boxes.get(p as usize))
                         .map(occluding_area)
                         .sum();
-                    let blocks = node.count[lane].div_ceil(costs.block_size.max(1)) as f32;
                     Occluder {
                         area,
-                        cost: costs.leaf + blocks * costs.block,
+                        // Per unit of the box's area: the walk has entered it.
+                        cost: costs.leaf_lane(1.0, node.count[lane]),
                     }
                 } else {
                     let child = node.child[lane] as usize;
