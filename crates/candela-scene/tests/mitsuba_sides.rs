@@ -98,6 +98,28 @@ fn a_shared_bsdf_keeps_its_sides_and_an_emitter_keeps_its_bsdfs() {
 }
 
 #[test]
+fn a_lamp_without_a_bsdf_is_black_and_a_plain_shape_grey() {
+    let l = load_shapes(
+        "mitsuba-lamp-default",
+        r#"
+    <shape type="rectangle">
+        <emitter type="area"><rgb name="radiance" value="2"/></emitter></shape>
+    <shape type="rectangle"/>"#,
+    );
+    let m = &l.scene.materials;
+    let lamp = m.iter().find(|m| m.emission.is_some()).unwrap();
+    let plain = m.iter().find(|m| m.emission.is_none()).unwrap();
+    assert_eq!(lamp.bsdf, BsdfDesc::Black);
+    assert_eq!(lamp.emission, Some(Vec3::splat(2.0)));
+    assert_eq!(plain.sides, Sides::Front);
+    assert!(
+        matches!(plain.bsdf, BsdfDesc::Diffuse { albedo } if albedo == Vec3::splat(0.5)),
+        "{:?}",
+        plain.bsdf
+    );
+}
+
+#[test]
 fn twosided_around_a_dielectric_is_reported_and_the_dielectric_kept() {
     let dir = candela_testkit::TempDir::new("mitsuba-sides-glass");
     let path = dir.join("scene.xml");

@@ -220,8 +220,11 @@ impl Builder {
         Ok(())
     }
 
-    /// The material of a shape: its `<bsdf>` or `<ref>` (default one-sided
-    /// grey diffuse), plus the radiance of its area `<emitter>`.
+    /// The material of a shape: its `<bsdf>` or `<ref>`, plus the radiance
+    /// of its area `<emitter>`. Without a BSDF, Mitsuba gives a shape a
+    /// one-sided grey diffuse, but an emitting shape a black one: its lamps
+    /// reflect nothing unless the scene says so (measured: Mitsuba renders a
+    /// lamp without a BSDF exactly as one with a black `diffuse`).
     fn shape_material(&mut self, doc: &Doc, node: XNode) -> Result<usize, LoadError> {
         let (mut inline, mut named, mut emission) = (None, None, None);
         for c in elements(node) {
@@ -255,7 +258,10 @@ impl Builder {
                 self.default_material = Some(i);
                 return Ok(i);
             }
-            None => Self::default_diffuse(),
+            None => MaterialDesc {
+                bsdf: BsdfDesc::Black,
+                ..Self::default_diffuse()
+            },
         };
         Ok(self.push_material(MaterialDesc {
             emission,
