@@ -232,6 +232,26 @@ PRINCIPLED = [
 </bsdf>"""),
 ]
 
+DIELECTRICS = [
+    ("dielectric (glass)", """<bsdf type="dielectric">
+    <float name="int_ior" value="1.5"/>
+</bsdf>"""),
+    ("dielectric water in air", """<bsdf type="dielectric">
+    <string name="int_ior" value="water"/>
+    <string name="ext_ior" value="air"/>
+</bsdf>"""),
+    ("roughdielectric beckmann 0.1", """<bsdf type="roughdielectric">
+    <string name="distribution" value="beckmann"/>
+    <float name="alpha" value="0.1"/>
+    <float name="int_ior" value="1.5"/>
+</bsdf>"""),
+    ("roughdielectric ggx 0.3 tinted", """<bsdf type="roughdielectric">
+    <string name="distribution" value="ggx"/>
+    <float name="alpha" value="0.3"/>
+    <float name="int_ior" value="1.7"/>
+    <rgb name="specular_transmittance" value="0.9, 0.7, 0.4"/>
+</bsdf>"""),
+]
 
 def bsdf_scene(name, comment, items):
     text = header(comment) + cornell()
@@ -242,6 +262,7 @@ def bsdf_scene(name, comment, items):
 
 bsdf_scene("bsdf-plastic", "Plastic, rough plastic (beckmann, ggx) and a thin dielectric.", PLASTICS)
 bsdf_scene("bsdf-conductor", "Conductors: named (Au), eta/k, anisotropic rough (Cu), rough beckmann (Ag).", CONDUCTORS)
+bsdf_scene("bsdf-dielectric", "Smooth and rough dielectrics: glass, named IORs, beckmann, tinted ggx.", DIELECTRICS)
 bsdf_scene("bsdf-principled", "The principled BSDF with four parameter sets.", PRINCIPLED)
 
 # One-sided BSDFs seen from the back, twosided, flip_normals: rectangles
