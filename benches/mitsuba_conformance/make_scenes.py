@@ -515,6 +515,57 @@ add("shapes", text, {
     "back wall": [52, 14, 76, 38],
 })
 
+# Cylinders: p0/p1/radius, to_world, a bitmap on Mitsuba's uv, flip_normals.
+QUAD = """<bsdf type="diffuse">
+    <texture type="bitmap" name="reflectance">
+        <string name="filename" value="textures/quadrants.png"/>
+    </texture>
+</bsdf>"""
+CX = [slot[0][0] for slot in SLOTS]
+text = header("Cylinders: p0/p1/radius, to_world, a bitmap on its uv, flip_normals.") + cornell()
+text += f"""    <shape type="cylinder" id="cyl_points">
+        <point name="p0" x="{CX[0]}" y="-1" z="0"/>
+        <point name="p1" x="{CX[0]}" y="-0.55" z="0"/>
+        <float name="radius" value="0.18"/>
+        {BLUE}
+    </shape>
+    <shape type="cylinder" id="cyl_textured">
+        <transform name="to_world">
+            <scale x="0.18" y="0.18" z="0.45"/>
+            <rotate x="1" angle="-90"/>
+            <rotate y="1" angle="40"/>
+            <translate x="{CX[1]}" y="-1" z="0"/>
+        </transform>
+{ind(QUAD)}
+    </shape>
+    <shape type="cylinder" id="cyl_flipped">
+        <transform name="to_world">
+            <scale x="0.18" y="0.18" z="0.4"/>
+            <rotate x="1" angle="-60"/>
+            <translate x="{CX[2]}" y="-1" z="0.1"/>
+        </transform>
+        <boolean name="flip_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.7, 0.2"/></bsdf>
+    </shape>
+    <shape type="cylinder" id="cyl_lying">
+        <point name="p0" x="-0.2" y="0" z="0"/>
+        <point name="p1" x="0.2" y="0" z="0"/>
+        <float name="radius" value="0.16"/>
+        <transform name="to_world">
+            <rotate y="1" angle="-30"/>
+            <translate x="{CX[3]}" y="-0.84" z="0"/>
+        </transform>
+        {ORANGE}
+    </shape>
+"""
+add("shapes-cylinder", text, {
+    "cylinder p0 p1": rect((CX[0], -0.78, 0.0), 0.18),
+    "cylinder textured": rect((CX[1], -0.78, 0.0), 0.18),
+    "cylinder flipped": rect((CX[2], -0.8, 0.25), 0.14),
+    "cylinder lying": rect((CX[3], -0.84, 0.0), 0.16),
+    "back wall": [52, 14, 76, 38],
+})
+
 
 def write_ply_sphere(path, n_theta=12, n_phi=24):
     """A coarse UV sphere as a binary PLY with per-vertex normals."""

@@ -53,11 +53,12 @@ impl Builder {
             "rectangle" => tessellate::rectangle(name.clone(), loc),
             "cube" => tessellate::cube(name.clone(), loc),
             "disk" => tessellate::disk(name.clone(), loc),
+            "cylinder" => cylinder(doc, node, name.clone(), loc)?,
             "sphere" => return self.sphere(doc, node, name, group),
             "shapegroup" => return self.shape_group(doc, node, group.is_some()),
             "instance" => return self.instance(doc, node, group.is_some()),
-            "serialized" | "cylinder" | "bsplinecurve" | "linearcurve" | "sdfgrid"
-            | "ellipsoids" | "ellipsoidsmesh" => {
+            "serialized" | "bsplinecurve" | "linearcurve" | "sdfgrid" | "ellipsoids"
+            | "ellipsoidsmesh" => {
                 return self.warn(
                     doc,
                     node,
@@ -375,4 +376,39 @@ fn place_sphere(m: Mat4, center: Vec3, radius: f32) -> Option<(Vec3, f32, Mat3)>
         m.z_axis.truncate() / scales[2],
     );
     uniform.then(|| (m.transform_point3(center), radius * mean, rotation))
+}
+
+/// Mitsuba's `cylinder`: the unit one of [`tessellate::cylinder`] placed
+/// from `p0` to `p1` with `radius`, as Mitsuba places it (its axis frame
+/// from the branchless orthonormal basis of Duff et al. 2017, which fixes
+/// where u = 0 lies). The placement is baked into the mesh, so `to_world`
+/// stays the instance's transform.
+fn cylinder(
+    doc: &Doc,
+    node: XNode,
+    name: String,
+    loc: crate::desc::SourceLoc,
+) -> Result<MeshDesc, LoadError> {
+    let p0 = point(doc, node, "p0")?.unwrap_or(Vec3::ZERO);
+    let p1 = point(doc, node, "p1")?.unwrap_or(Vec3::Z);
+    let radius = float(doc, node, "radius", 1.0)?;
+    let axis = p1 - p0;
+    let length = axis.length();
+    if !(radius > 0.0 && radius.is_finite()) || !(length > 0.0 && length.is_finite()) {
+        return Err(doc.err(
+            node,
+            ErrorKind::BadValue,
+            format!("cylinder: radius {radius} and length {length} must be positive"),
+        ));
+    }
+    let d = axis / length;
+    let (s, t) = d.any_orthonormal_pair();
+    let mut mesh = tessellate::cylinder(name, loc);
+    for p in &mut mesh.positions {
+        *p = p0 + radius * (p.x * s + p.y * t) + length * p.z * d;
+    }
+    for n in &mut mesh.normals {
+        *n = n.x * s + n.y * t;
+    }
+    Ok(mesh)
 }
