@@ -18,6 +18,8 @@ the light under test.
 
 import json
 import math
+import struct
+import zlib
 from pathlib import Path
 
 import numpy as np
@@ -611,6 +613,92 @@ for i, fn in enumerate([False, True]):
 """
 add("shapes-normals", text, {"ply smooth normals": rect(*SLOTS[2]), "ply face_normals": rect(*SLOTS[3])})
 
+
+def uv_sphere(n_theta=12, n_phi=24):
+    """A coarse UV sphere with its seam column doubled: positions, uvs, faces
+    (counter-clockwise seen from outside)."""
+    pos, uv, faces = [], [], []
+    for i in range(n_theta + 1):
+        t = math.pi * i / n_theta
+        for j in range(n_phi + 1):
+            p = 2 * math.pi * j / n_phi
+            pos.append((math.sin(t) * math.cos(p), math.cos(t), math.sin(t) * math.sin(p)))
+            uv.append((j / n_phi, i / n_theta))
+    cols = n_phi + 1
+    for i in range(n_theta):
+        for j in range(n_phi):
+            a, b = i * cols + j, i * cols + j + 1
+            c, d = a + cols, b + cols
+            if i > 0:
+                faces.append((a, b, c))
+            if i < n_theta - 1:
+                faces.append((b, d, c))
+    return pos, uv, faces
+
+
+def write_serialized(path, meshes):
+    """Meshes [(name, flags, pos, normals, uv, faces)] as a version 4
+    .serialized file (the layout of Mitsuba's `serialized` documentation)."""
+    out, offsets = b"", []
+    for name, flags, pos, nrm, uv, faces in meshes:
+        real = "d" if flags & 0x2000 else "f"
+        raw = struct.pack("<I", flags) + name.encode() + b"\0"
+        raw += struct.pack("<QQ", len(pos), len(faces))
+        raw += struct.pack(f"<{3 * len(pos)}{real}", *[c for p in pos for c in p])
+        if flags & 0x1:
+            raw += struct.pack(f"<{3 * len(nrm)}{real}", *[c for n in nrm for c in n])
+        if flags & 0x2:
+            raw += struct.pack(f"<{2 * len(uv)}{real}", *[c for t in uv for c in t])
+        raw += struct.pack(f"<{3 * len(faces)}I", *[i for f in faces for i in f])
+        offsets.append(len(out))
+        out += struct.pack("<HH", 0x041C, 4) + zlib.compress(raw)
+    out += struct.pack(f"<{len(offsets)}Q", *offsets) + struct.pack("<I", len(offsets))
+    path.write_bytes(out)
+
+
+def write_mesh_files(t):
+    pos, uv, faces = uv_sphere()
+    write_serialized(t / "spheres.serialized", [
+        ("with normals and uv", 0x1 | 0x2 | 0x1000, pos, pos, uv, faces),
+        ("positions only, double", 0x2000, pos, None, None, faces),
+    ])
+    (t / "sphere_bare.ply").write_text(
+        f"ply\nformat ascii 1.0\nelement vertex {len(pos)}\n"
+        "property float x\nproperty float y\nproperty float z\n"
+        f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n"
+        + "".join(" ".join(f"{c:.6f}" for c in p) + "\n" for p in pos)
+        + "".join(f"3 {a} {b} {c}\n" for a, b, c in faces))
+    (t / "sphere_bare.obj").write_text(
+        "".join("v " + " ".join(f"{c:.6f}" for c in p) + "\n" for p in pos)
+        + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces))
+
+
+MESH_SHAPES = [
+    ("serialized, its normals and uv", "serialized", "spheres.serialized", "", QUAD),
+    ("serialized shape_index 1, no normals", "serialized", "spheres.serialized",
+     '\n        <integer name="shape_index" value="1"/>',
+     '<bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>'),
+    ("ply without normals", "ply", "sphere_bare.ply", "",
+     '<bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>'),
+    ("obj without normals", "obj", "sphere_bare.obj", "",
+     '<bsdf type="diffuse"><rgb name="reflectance" value="0.4, 0.7, 0.4"/></bsdf>'),
+]
+text = header("Mesh files: serialized (two meshes, normals and uv, double precision), "
+              "and meshes without normals, which Mitsuba shades smoothly.") + cornell()
+for i, (label, kind, fname, extra, bsdf) in enumerate(MESH_SHAPES):
+    (x, y, z), r = SLOTS[i]
+    text += f"""    <shape type="{kind}" id="mesh{i}">
+        <string name="filename" value="textures/{fname}"/>{extra}
+        <transform name="to_world">
+            <scale value="{r}"/>
+            <rotate y="1" angle="-60"/>
+            <translate x="{x}" y="{y}" z="{z}"/>
+        </transform>
+{ind(bsdf)}
+    </shape>
+"""
+add("shapes-meshes", text, {**slot_regions([m[0] for m in MESH_SHAPES]), "back wall": [52, 14, 76, 38]})
+
 # --- Emitters ---------------------------------------------------------------
 
 GREY_SPHERES = "".join(
@@ -723,6 +811,7 @@ add("sensor-clip", header("near_clip 3.5 cuts the spheres' front caps away (twos
 def main():
     write_textures()
     write_ply_sphere(HERE / "textures" / "sphere.ply")
+    write_mesh_files(HERE / "textures")
     for name, text in SCENES.items():
         (HERE / f"{name}.xml").write_text(text)
     (HERE / "regions.json").write_text(json.dumps(REGIONS, indent=1) + "\n")

@@ -215,13 +215,13 @@ fn unsupported_plugins_warn_once_or_fail_in_strict_mode() {
     let body = r#"<scene version="3.0.0">
     <shape type="cube"><bsdf type="principledthin"/></shape>
     <shape type="cube"><bsdf type="principledthin"/></shape>
-    <shape type="serialized"/>
+    <shape type="bsplinecurve"/>
 </scene>"#;
     std::fs::write(&path, body).unwrap();
     let l = load(&path, &LoadOptions::default()).unwrap();
     assert_eq!(l.report.len(), 2, "{}", l.report);
     assert_eq!(l.report.warnings[0].count, 2, "{}", l.report);
-    assert!(l.report.mentions("serialized"));
+    assert!(l.report.mentions("bsplinecurve"));
     let err = load(&path, &strict()).unwrap_err();
     assert_eq!(err.kind, candela_scene::ErrorKind::Unsupported, "{err}");
 }

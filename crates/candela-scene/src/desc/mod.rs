@@ -19,6 +19,7 @@
 mod camera;
 mod material;
 mod perturbation;
+mod smooth_normals;
 mod tangents;
 
 pub use camera::{CameraDesc, Projection};

@@ -21,6 +21,7 @@ mod doc;
 mod emitters;
 mod principled;
 mod sensor;
+mod serialized;
 mod shapes;
 mod tables;
 mod tessellate;

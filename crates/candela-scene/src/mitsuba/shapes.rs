@@ -7,7 +7,7 @@
 use super::doc::{elements, Doc, XNode};
 use super::emitters::area_radiance;
 use super::transform::to_world;
-use super::values::{boolean, float, point};
+use super::values::{boolean, float, integer, point};
 use super::{tessellate, Builder};
 use crate::desc::{
     BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, Sides, SphereDesc, TextureSlots,
@@ -42,11 +42,28 @@ impl Builder {
                 } else {
                     crate::ply::read_ply_mesh(&path, &mut self.warnings)?
                 };
-                if boolean(doc, node, "face_normals", false)? {
-                    m.normals.clear();
-                    m.normal_indices.clear();
-                }
+                smooth_or_faceted(&mut m, boolean(doc, node, "face_normals", false)?);
                 m.name = name.clone();
+                m.loc = loc;
+                m
+            }
+            "serialized" => {
+                let path = self.existing_file(doc, node)?;
+                let index = integer(doc, node, "shape_index", 0)?;
+                let index = u32::try_from(index).map_err(|_| {
+                    doc.err(
+                        node,
+                        ErrorKind::BadValue,
+                        format!("shape_index {index} is negative"),
+                    )
+                })?;
+                let read = super::serialized::read_serialized(&path, index)?;
+                let mut m = read.mesh;
+                let faceted = read.face_normals || boolean(doc, node, "face_normals", false)?;
+                smooth_or_faceted(&mut m, faceted);
+                if m.name.is_empty() {
+                    m.name = name.clone();
+                }
                 m.loc = loc;
                 m
             }
@@ -57,8 +74,7 @@ impl Builder {
             "sphere" => return self.sphere(doc, node, name, group),
             "shapegroup" => return self.shape_group(doc, node, group.is_some()),
             "instance" => return self.instance(doc, node, group.is_some()),
-            "serialized" | "bsplinecurve" | "linearcurve" | "sdfgrid" | "ellipsoids"
-            | "ellipsoidsmesh" => {
+            "bsplinecurve" | "linearcurve" | "sdfgrid" | "ellipsoids" | "ellipsoidsmesh" => {
                 return self.warn(
                     doc,
                     node,
@@ -394,7 +410,7 @@ fn cylinder(
     let radius = float(doc, node, "radius", 1.0)?;
     let axis = p1 - p0;
     let length = axis.length();
-    if !(radius > 0.0 && radius.is_finite()) || !(length > 0.0 && length.is_finite()) {
+    if !(radius > 0.0 && radius.is_finite() && length > 0.0 && length.is_finite()) {
         return Err(doc.err(
             node,
             ErrorKind::BadValue,
@@ -411,4 +427,16 @@ fn cylinder(
         *n = n.x * s + n.y * t;
     }
     Ok(mesh)
+}
+
+/// A mesh file's normals as Mitsuba shades them: none with `face_normals`
+/// (flat triangles), else the file's, else smooth angle-weighted ones, which
+/// Mitsuba computes for `obj`, `ply` and `serialized` meshes without normals.
+fn smooth_or_faceted(mesh: &mut MeshDesc, face_normals: bool) {
+    if face_normals {
+        mesh.normals.clear();
+        mesh.normal_indices.clear();
+    } else {
+        mesh.set_angle_weighted_normals();
+    }
 }
