@@ -119,11 +119,13 @@ impl Material {
                 alpha,
                 distribution,
                 masking,
+                internal_reflectance,
                 nonlinear,
             } => Some(if alpha > 0.0 {
-                Bsdf::RoughPlastic(RoughPlastic::with_masking(
+                Bsdf::RoughPlastic(RoughPlastic::with_conventions(
                     microfacets(distribution, Alpha::isotropic(alpha)),
                     masking,
+                    internal_reflectance,
                     diffuse,
                     specular,
                     ior,

@@ -221,6 +221,7 @@ fn the_new_bsdf_descriptions_map_to_the_renderers_bsdfs() {
         alpha,
         distribution: MicrofacetModel::Beckmann,
         masking: separable,
+        internal_reflectance: candela_scene::InternalReflectance::EvenSampleMean,
         nonlinear: false,
     };
     assert!(matches!(map(plastic(0.0)), (Bsdf::Plastic(_), 0)));

@@ -7,9 +7,12 @@
 //! the rough dielectric's refraction lobe into the layer; E + T < 1 by what
 //! masking removes (single scattering). Light scattered back up from the
 //! base meets the coating from inside, whose albedo for diffuse light is
-//! F_int = 2 ∫₀¹ E_inside(μ) μ dμ (mostly total internal reflection). These
-//! are Mitsuba 3's `roughplastic` precomputations (`eval_transmittance` and
-//! `eval_reflectance`; Weidlich & Wilkie 2007).
+//! F_int = 2 ∫₀¹ E_inside(μ) μ dμ (mostly total internal reflection), or,
+//! as the description's [`InternalReflectance`] says, Mitsuba's plain mean
+//! of 2 E_inside(μ) μ at 64 evenly spaced μ, ends included, which is
+//! (63/64) F_int + E_inside(1)/64. These are Mitsuba 3's `roughplastic`
+//! precomputations (`eval_transmittance` and `eval_reflectance`; Weidlich &
+//! Wilkie 2007).
 //!
 //! Both albedos are integrated over the visible normals: E(μ) = E_u[F ·
 //! G2(wo, wi) / G1(wo) · [wi above]] and T(μ) = E_u[(1 − F) · G2(wo, wt) /
@@ -18,7 +21,8 @@
 //! which is smooth where the lobe is narrow and never misses it. Anisotropic distributions are tabulated at
 //! azimuth 0 (Mitsuba refuses them for `roughplastic`).
 //!
-//! Tables are interned: one per distinct (distribution, IOR) for the whole
+//! Tables are interned: one per distinct (distribution, masking, F_int
+//! rule, IOR) for the whole
 //! process, leaked so that [`super::RoughPlastic`] stays a small `Copy`
 //! value holding a `&'static` reference. Their number is the number of
 //! distinct rough-plastic parameter sets in the scenes loaded, so a caller
@@ -30,13 +34,19 @@ use glam::{Vec2, Vec3};
 
 use super::distribution::{Masking, MicrofacetDistribution};
 use super::fresnel::{fresnel_dielectric, refract};
+pub use candela_scene::InternalReflectance;
 
 /// Entries of T(μ), at μ = j / (N − 1).
 pub(super) const TABLE_SIZE: usize = 64;
-/// Grid side of the visible-normal quadrature per direction.
+/// Grid side of the visible-normal quadrature per direction. From inside
+/// it needs the full side too: the edge of total internal reflection cuts
+/// the grid, and at 32 F_int was 0.0035 too high for GGX α = 0.1.
 const GRID: usize = 64;
 /// Cosines at which E_inside is averaged for F_int (midpoints).
 const INTERNAL_NODES: usize = 64;
+/// Cosines of [`InternalReflectance::EvenSampleMean`] (Mitsuba's table
+/// size): j / (N − 1) for j = 0..N.
+const EVEN_SAMPLES: usize = 64;
 /// The smallest cosine tabulated (μ = 0 exactly has no visible normals).
 const MIN_COSINE: f32 = 1e-4;
 
@@ -45,28 +55,29 @@ const MIN_COSINE: f32 = 1e-4;
 pub(crate) struct CoatingTable {
     dist: MicrofacetDistribution,
     masking: Masking,
+    internal: InternalReflectance,
     ior: f32,
     transmittance: [f32; TABLE_SIZE],
     internal_reflectance: f32,
 }
 
 impl CoatingTable {
-    fn compute(dist: MicrofacetDistribution, masking: Masking, ior: f32) -> Self {
+    fn compute(
+        dist: MicrofacetDistribution,
+        masking: Masking,
+        internal: InternalReflectance,
+        ior: f32,
+    ) -> Self {
         let mut transmittance = [0.0; TABLE_SIZE];
         for (j, t) in transmittance.iter_mut().enumerate() {
             let mu = (j as f32 / (TABLE_SIZE - 1) as f32).max(MIN_COSINE);
             *t = transmission_albedo(dist, masking, ior, mu, GRID).clamp(0.0, 1.0);
         }
-        let internal_reflectance = (0..INTERNAL_NODES)
-            .map(|j| {
-                let mu = (j as f32 + 0.5) / INTERNAL_NODES as f32;
-                2.0 * mu * reflection_albedo(dist, masking, 1.0 / ior, mu, GRID / 2)
-            })
-            .sum::<f32>()
-            / INTERNAL_NODES as f32;
+        let internal_reflectance = internal_reflectance(dist, masking, internal, 1.0 / ior, GRID);
         Self {
             dist,
             masking,
+            internal,
             ior,
             transmittance,
             internal_reflectance: internal_reflectance.clamp(0.0, 1.0),
@@ -86,6 +97,35 @@ impl CoatingTable {
     pub(crate) fn internal_reflectance(&self) -> f32 {
         self.internal_reflectance
     }
+}
+
+/// F_int: the albedo for diffuse light of a rough interface of relative
+/// IOR `eta` (far side over near side), E(μ) on a `grid` × `grid` rule,
+/// averaged over μ as `rule` says.
+pub(crate) fn internal_reflectance(
+    dist: MicrofacetDistribution,
+    masking: Masking,
+    rule: InternalReflectance,
+    eta: f32,
+    grid: usize,
+) -> f32 {
+    let cosines: Vec<f32> = match rule {
+        // The midpoint rule: 2 E(μ) μ is smooth but for the edge of total
+        // internal reflection.
+        InternalReflectance::Integral => (0..INTERNAL_NODES)
+            .map(|j| (j as f32 + 0.5) / INTERNAL_NODES as f32)
+            .collect(),
+        InternalReflectance::EvenSampleMean => (0..EVEN_SAMPLES)
+            .map(|j| j as f32 / (EVEN_SAMPLES - 1) as f32)
+            .collect(),
+    };
+    let sum: f32 = cosines
+        .iter()
+        // μ = 0 has no visible normals; its term is 0 (μ E(μ) → 0).
+        .filter(|&&mu| mu > 0.0)
+        .map(|&mu| 2.0 * mu * reflection_albedo(dist, masking, eta, mu, grid))
+        .sum();
+    sum / cosines.len() as f32
 }
 
 /// The directional albedo E(μ) of the reflection lobe of a rough interface
@@ -156,10 +196,12 @@ fn visible_normal_mean(
 static TABLES: Mutex<Vec<&'static CoatingTable>> = Mutex::new(Vec::new());
 
 /// The table for a coating of distribution `dist` and IOR `ior` (inside
-/// over outside), computed on first use.
+/// over outside), its masking and F_int as the description says, computed
+/// on first use.
 pub(crate) fn coating_table(
     dist: MicrofacetDistribution,
     masking: Masking,
+    internal: InternalReflectance,
     ior: f32,
 ) -> &'static CoatingTable {
     // A poisoned lock only means another thread panicked while pushing a
@@ -167,12 +209,13 @@ pub(crate) fn coating_table(
     let mut tables = TABLES.lock().unwrap_or_else(|e| e.into_inner());
     if let Some(t) = tables
         .iter()
-        .find(|t| t.dist == dist && t.masking == masking && t.ior == ior)
+        .find(|t| t.dist == dist && t.masking == masking && t.internal == internal && t.ior == ior)
     {
         return t;
     }
-    let table: &'static CoatingTable =
-        Box::leak(Box::new(CoatingTable::compute(dist, masking, ior)));
+    let table: &'static CoatingTable = Box::leak(Box::new(CoatingTable::compute(
+        dist, masking, internal, ior,
+    )));
     tables.push(table);
     table
 }

@@ -8,7 +8,7 @@ use glam::Vec3;
 
 use super::coating::coating_table;
 use super::test_support::*;
-use super::{Bsdf, Masking, MicrofacetDistribution, RoughPlastic};
+use super::{Bsdf, InternalReflectance, Masking, MicrofacetDistribution, RoughPlastic};
 use crate::sampling::warp::square_to_uniform_sphere;
 use crate::sampling::{Sampler, SamplerKind};
 
@@ -39,9 +39,10 @@ fn models(dist: MicrofacetDistribution, masking: Masking) -> [(&'static str, Bsd
         ),
         (
             "rough plastic",
-            Bsdf::RoughPlastic(RoughPlastic::with_masking(
+            Bsdf::RoughPlastic(RoughPlastic::with_conventions(
                 dist,
                 masking,
+                InternalReflectance::Integral,
                 Vec3::new(0.6, 0.3, 0.2),
                 Vec3::ONE,
                 1.49,
@@ -149,8 +150,18 @@ fn reflection_is_reciprocal_with_either_masking() {
 #[test]
 fn coating_table_follows_the_masking() {
     let dist = MicrofacetDistribution::beckmann(0.3);
-    let hc = coating_table(dist, Masking::HeightCorrelated, 1.49);
-    let sep = coating_table(dist, Masking::Separable, 1.49);
+    let hc = coating_table(
+        dist,
+        Masking::HeightCorrelated,
+        InternalReflectance::Integral,
+        1.49,
+    );
+    let sep = coating_table(
+        dist,
+        Masking::Separable,
+        InternalReflectance::Integral,
+        1.49,
+    );
     for j in 0..=20 {
         let mu = (j as f32 / 20.0).max(0.02);
         assert!(

@@ -84,6 +84,7 @@ mod transport;
 #[cfg(test)]
 mod transport_tests;
 
+pub use coating::InternalReflectance;
 pub use distribution::Masking;
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
 pub use flags::BsdfFlags;

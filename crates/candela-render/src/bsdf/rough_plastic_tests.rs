@@ -21,10 +21,10 @@
 
 use glam::Vec3;
 
-use super::coating::{coating_table, reflection_albedo};
+use super::coating::{coating_table, internal_reflectance, reflection_albedo};
 use super::plastic::diffuse_fresnel_reflectance;
 use super::test_support::*;
-use super::{Bsdf, Masking, MicrofacetDistribution, RoughPlastic};
+use super::{Bsdf, InternalReflectance, Masking, MicrofacetDistribution, RoughPlastic};
 
 const IOR: f32 = 1.5;
 
@@ -129,7 +129,12 @@ fn coating_table_matches_quadrature() {
             transmittance: Vec3::ONE,
             ior: IOR,
         };
-        let table = coating_table(dist, Masking::HeightCorrelated, IOR);
+        let table = coating_table(
+            dist,
+            Masking::HeightCorrelated,
+            InternalReflectance::Integral,
+            IOR,
+        );
         for mu in [1.0f32, 0.8, 0.51, 0.25, 0.1] {
             let wo = Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
             let below = Vec3::new(wo.x, wo.y, -wo.z);
@@ -158,7 +163,12 @@ fn smooth_coating_limit_matches_the_smooth_plastic() {
     // F_int to the smooth interface's internal diffuse reflectance (0.596
     // for η = 1.5).
     let dist = MicrofacetDistribution::ggx(0.002);
-    let table = coating_table(dist, Masking::HeightCorrelated, IOR);
+    let table = coating_table(
+        dist,
+        Masking::HeightCorrelated,
+        InternalReflectance::Integral,
+        IOR,
+    );
     let smooth = diffuse_fresnel_reflectance(1.0 / IOR);
     assert!(
         (table.internal_reflectance() - smooth).abs() < 5e-3,
@@ -177,7 +187,12 @@ fn smooth_coating_limit_matches_the_smooth_plastic() {
 /// (E(μo), T(μo), R): the furnace albedo at ρ = 1 is exactly E + T R,
 /// R = T̄ / (η² (1 − F_int)) (1 for a smooth coating).
 fn furnace_prediction(dist: MicrofacetDistribution, mu: f32) -> (f32, f32, f32) {
-    let table = coating_table(dist, Masking::HeightCorrelated, IOR);
+    let table = coating_table(
+        dist,
+        Masking::HeightCorrelated,
+        InternalReflectance::Integral,
+        IOR,
+    );
     let n = 256;
     let diffuse_transmittance: f32 = (0..n)
         .map(|j| {
@@ -243,7 +258,13 @@ fn nonlinear_mode_sums_the_round_trips() {
     // at ρ = 1, the nonlinear one darker for ρ < 1, in the ratio of the two
     // denominators; the coating lobe is the same.
     let dist = MicrofacetDistribution::beckmann(0.3);
-    let f_int = coating_table(dist, Masking::HeightCorrelated, IOR).internal_reflectance();
+    let f_int = coating_table(
+        dist,
+        Masking::HeightCorrelated,
+        InternalReflectance::Integral,
+        IOR,
+    )
+    .internal_reflectance();
     let grey = |nonlinear| {
         Bsdf::RoughPlastic(RoughPlastic::new(
             dist,
@@ -258,4 +279,93 @@ fn nonlinear_mode_sums_the_round_trips() {
     assert!((ratio - (1.0 - f_int) / (1.0 - 0.5 * f_int)).abs() < 1e-5);
     let (a, b) = (white(dist, true).f(wo, wi), white(dist, false).f(wo, wi));
     assert!((a - b).abs().max_element() < 1e-6);
+}
+
+#[test]
+fn even_sample_mean_is_the_coarse_average_of_the_smooth_limit() {
+    // As α → 0, E_inside(μ) is the Fresnel reflectance R(μ) from inside, so
+    // Mitsuba's F_int is (1/64) Σ 2 μ_j R(μ_j) at μ_j = j/63, summed here
+    // from R directly, and the integral rule tends to the smooth
+    // interface's internal diffuse reflectance. The two differ by about
+    // (F_int − R(1))/64 = 0.0087 at η = 1.5, three times the tolerance,
+    // which is the midpoint rule's error at the critical angle (R rises to
+    // 1 there like a square root): about 2e-3 with 64 cosines.
+    let dist = MicrofacetDistribution::ggx(0.002);
+    let masking = Masking::Separable;
+    let table = |rule| coating_table(dist, masking, rule, IOR).internal_reflectance();
+    let even_sum: f32 = (1..64)
+        .map(|j| {
+            let mu = j as f32 / 63.0;
+            2.0 * mu * super::fresnel::fresnel_dielectric(mu, 1.0 / IOR)
+        })
+        .sum();
+    let (even, integral) = (
+        table(InternalReflectance::EvenSampleMean),
+        table(InternalReflectance::Integral),
+    );
+    let smooth = diffuse_fresnel_reflectance(1.0 / IOR);
+    assert!(
+        (even - even_sum / 64.0).abs() < 3e-3,
+        "{even} vs {}",
+        even_sum / 64.0
+    );
+    assert!((integral - smooth).abs() < 3e-3, "{integral} vs {smooth}");
+}
+
+#[test]
+fn even_sample_mean_relates_to_the_integral_as_the_trapezoid_rule() {
+    // The mean of g(μ) = 2 μ E(μ) at μ_j = j/63, j = 0..64, is
+    // (63/64) × (the trapezoid rule) + (g(0) + g(1))/128, g(0) = 0: with
+    // the trapezoid rule close to the integral, F_even = (63/64) F_int +
+    // E(1)/64. The two sides come from different cosines (ends included
+    // against midpoints); the edge of total internal reflection, a kink in
+    // g, makes the trapezoid and midpoint rules differ by about 1e-3.
+    for dist in [
+        MicrofacetDistribution::beckmann(0.2),
+        MicrofacetDistribution::ggx(0.3),
+    ] {
+        let masking = Masking::Separable;
+        let table = |rule| coating_table(dist, masking, rule, IOR).internal_reflectance();
+        let e1 = reflection_albedo(dist, masking, 1.0 / IOR, 1.0, 64);
+        let predicted = 63.0 / 64.0 * table(InternalReflectance::Integral) + e1 / 64.0;
+        let even = table(InternalReflectance::EvenSampleMean);
+        assert!(
+            (even - predicted).abs() < 1.5e-3,
+            "{dist:?}: {even} vs {predicted}"
+        );
+    }
+}
+
+#[test]
+fn internal_reflectance_grid_is_fine_enough() {
+    // GGX's long tail: the midpoint grid over visible normals misses the
+    // steepest normals, whose reflections go below the surface, so F_int
+    // comes out high by about 0.13/grid (0.0042 at 32). The table's grid
+    // against four times as fine a grid.
+    let dist = MicrofacetDistribution::ggx(0.1);
+    let masking = Masking::Separable;
+    let rule = InternalReflectance::Integral;
+    let table = coating_table(dist, masking, rule, IOR).internal_reflectance();
+    let fine = internal_reflectance(dist, masking, rule, 1.0 / IOR, 256);
+    assert!((table - fine).abs() < 2.5e-3, "{table} vs {fine}");
+}
+
+#[test]
+fn textured_base_keeps_the_coating_conventions() {
+    // A colour texture replaces the base only: the masking and F_int rule
+    // the scene chose stay.
+    let dist = MicrofacetDistribution::beckmann(0.2);
+    let plastic = |diffuse| {
+        RoughPlastic::with_conventions(
+            dist,
+            Masking::Separable,
+            InternalReflectance::EvenSampleMean,
+            diffuse,
+            Vec3::ONE,
+            IOR,
+            false,
+        )
+    };
+    let (a, b) = (Vec3::new(0.8, 0.2, 0.1), Vec3::new(0.1, 0.5, 0.9));
+    assert_eq!(plastic(a).with_diffuse(b), plastic(b));
 }

@@ -24,8 +24,8 @@ mod tangents;
 
 pub use camera::{CameraDesc, Projection};
 pub use material::{
-    Alpha, BsdfDesc, ColorSpace, Masking, MaterialDesc, MicrofacetModel, PrincipledParameters,
-    Sides, TextureRef, TextureSlot, TextureSlots,
+    Alpha, BsdfDesc, ColorSpace, InternalReflectance, Masking, MaterialDesc, MicrofacetModel,
+    PrincipledParameters, Sides, TextureRef, TextureSlot, TextureSlots,
 };
 pub use perturbation::{AwayFromViewer, PerturbationRules, TangentFrame};
 

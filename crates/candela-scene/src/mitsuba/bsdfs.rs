@@ -8,7 +8,7 @@
 //! | `thindielectric` | `ThinDielectric` |
 //! | `roughdielectric` | `RoughDielectric` (alpha, or alpha_u/alpha_v; beckmann or ggx) |
 //! | `conductor`, `roughconductor` | `Conductor` (alpha 0 when smooth, alpha_u/alpha_v anisotropic), `material` presets (the measured metals of [`crate::metals`]) or eta/k; a smooth `none` with `specular_reflectance` is a `Mirror` of that reflectance |
-//! | `plastic`, `roughplastic` | `Plastic` (alpha 0 when smooth), with `nonlinear` |
+//! | `plastic`, `roughplastic` | `Plastic` (alpha 0 when smooth), with `nonlinear`; masking separable and F_int the mean of 64 even samples, as Mitsuba computes them |
 //! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the bump (height, times `scale`) or normal-map slot, with Mitsuba's [`PerturbationRules`] (`use_shadowing_function`; `flip_invalid_normals` false is reported) |
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot, or a constant opacity (a colour's luminance) |
 //! | `principled` | `Principled` (`principled.rs`: every parameter; textures on base_color, roughness, metallic) |
@@ -27,8 +27,8 @@ use super::doc::{elements, Doc, XNode};
 use super::values::{boolean, constant_color, float, float_of, string};
 use super::{tables, Builder};
 use crate::desc::{
-    Alpha, AwayFromViewer, BsdfDesc, ColorSpace, Masking, MaterialDesc, MicrofacetModel,
-    PerturbationRules, Sides, TextureRef, TextureSlot, TextureSlots,
+    Alpha, AwayFromViewer, BsdfDesc, ColorSpace, InternalReflectance, Masking, MaterialDesc,
+    MicrofacetModel, PerturbationRules, Sides, TextureRef, TextureSlot, TextureSlots,
 };
 use crate::error::{ErrorKind, LoadError};
 use glam::Vec3;
@@ -143,6 +143,7 @@ impl Builder {
                 BsdfDesc::Plastic {
                     diffuse,
                     masking: Masking::Separable,
+                    internal_reflectance: InternalReflectance::EvenSampleMean,
                     specular: self.constant(doc, node, "specular_reflectance", Vec3::ONE)?,
                     ior: int / ext,
                     alpha: if rough {
