@@ -180,11 +180,12 @@ fn a_bump_gradient_follows_the_transform_by_the_chain_rule() {
         let g = slot.gradient(uv, 0);
         let du = (slot.value(uv + Vec2::X * h, 0) - slot.value(uv - Vec2::X * h, 0)) / (2.0 * h);
         let dv = (slot.value(uv + Vec2::Y * h, 0) - slot.value(uv - Vec2::Y * h, 0)) / (2.0 * h);
-        // The four probes in one bilinear cell: their gradients agree.
-        let cell_gradient = |p: Vec2| slot.gradient(p, 0);
+        // The four probes in one bilinear cell: their gradients differ by
+        // the interpolant's small twist only, not by a jump between cells.
+        let near = 1e-2 * (1.0 + g.abs().max_element());
         let same_cell = [Vec2::X, -Vec2::X, Vec2::Y, -Vec2::Y]
             .iter()
-            .all(|d| (cell_gradient(uv + *d * h) - g).abs().max_element() < 1e-3);
+            .all(|d| (slot.gradient(uv + *d * h, 0) - g).abs().max_element() < near);
         if !same_cell {
             continue;
         }
