@@ -172,7 +172,7 @@ impl Material {
             )));
         }
         let emission = match &textures.emission {
-            Some(t) => Some(t.image.mean() * t.scale.max(0.0)),
+            Some(t) => Some(t.mean() * t.scale.max(0.0)),
             None => desc.emission,
         }
         .filter(|e| e.max_element() > 0.0);

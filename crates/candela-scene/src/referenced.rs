@@ -53,7 +53,8 @@ fn images(desc: &SceneDesc) -> Vec<PathBuf> {
     let textures = desc
         .materials
         .iter()
-        .flat_map(|m| m.textures.iter().map(|(_, t)| t.path.clone()));
+        .flat_map(|m| m.textures.iter().filter_map(|(_, t)| t.image_path()))
+        .map(std::path::Path::to_path_buf);
     let environment = match &desc.environment {
         Some(crate::EnvironmentDesc::Map { path, .. }) => Some(path.clone()),
         _ => None,

@@ -167,7 +167,10 @@ fn diffuse_texture_resolves_through_newparams_relative_to_the_file() {
         .color
         .clone()
         .unwrap();
-    assert_eq!(tex.path, Path::new("/data/scenes/tex/wood.png"));
+    assert_eq!(
+        tex.image_path(),
+        Some(Path::new("/data/scenes/tex/wood.png"))
+    );
 }
 
 #[test]

@@ -498,30 +498,6 @@ proptest! {
 }
 
 #[test]
-fn texture_transforms_are_reported_not_dropped() {
-    // Mitsuba reads a texture through its to_uv; Candela does not, so it
-    // is reported once (benches/mitsuba_conformance/tex-diffuse.xml: -14%
-    // in G against Mitsuba for a bitmap with to_uv).
-    let dir = candela_testkit::TempDir::new("mitsuba-uv-transform");
-    let path = dir.join("uv.xml");
-    std::fs::write(
-        dir.join("t.png"),
-        include_bytes!("../../../benches/mitsuba_conformance/textures/quadrants.png"),
-    )
-    .unwrap();
-    let body = r#"<scene version="3.0.0">
-    <shape type="cube"><bsdf type="diffuse">
-        <texture type="bitmap" name="reflectance"><string name="filename" value="t.png"/>
-            <transform name="to_uv"><scale x="2"/></transform></texture>
-    </bsdf></shape>
-</scene>"#;
-    std::fs::write(&path, body).unwrap();
-    let l = load(&path, &LoadOptions::default()).unwrap();
-    assert_eq!(l.report.len(), 1, "{}", l.report);
-    assert!(l.report.mentions("to_uv"), "{}", l.report);
-}
-
-#[test]
 fn built_in_shapes_and_ply_read_images_from_the_top_as_mitsuba_does() {
     // Mitsuba's rectangle has uv (0, 0) at its corner (-1, -1), and Mitsuba
     // reads uv v = 0 on an image's top row; Candela's v = 0 is the bottom

@@ -219,8 +219,8 @@ pub fn scene_hash(desc: &SceneDesc, env_map: Option<&Path>) -> ContentHash {
     h.debug(lights);
     h.debug(environment);
     for material in materials {
-        for (_, texture) in material.textures.iter() {
-            h.file(&texture.path);
+        for path in material.textures.iter().filter_map(|(_, t)| t.image_path()) {
+            h.file(path);
         }
     }
     if let Some(EnvironmentDesc::Map { path, .. }) = environment {

@@ -71,11 +71,9 @@ fn sphere(textured: Option<TexturedEmission>) -> AreaLight {
 fn striped_emission() -> TexturedEmission {
     let image = RgbImage::from_pixels(2, 1, vec![[4.0, 1.0, 0.5], [0.5, 2.0, 6.0]]).unwrap();
     let textures = MaterialTextures {
-        emission: Some(SlotTexture {
-            image: Arc::new(ImageTexture::from_image(&image).unwrap()),
-            scale: 1.0,
-            channel: None,
-        }),
+        emission: Some(SlotTexture::of_image(Arc::new(
+            ImageTexture::from_image(&image).unwrap(),
+        ))),
         ..MaterialTextures::default()
     };
     TexturedEmission {

@@ -106,7 +106,7 @@ fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Shad
     let mut n = hit.ns;
     if let Some(map) = &t.normal {
         let (tu, tv) = tangent_axes(rules.tangent_frame, hit, dpdu, dpdv);
-        n = normal_map::mapped_normal(n, tu, tv, map.image.lookup(hit.uv), map.scale);
+        n = normal_map::mapped_normal(n, tu, tv, map.rgb(hit.uv), map.scale);
     }
     if let Some(bump) = &t.bump {
         let slope = bump.gradient(hit.uv, BUMP_CHANNEL);

@@ -259,9 +259,8 @@ mod tests {
         let (w, c, s, l) = (8, 0.6f32, 0.5f32, 0.4f32);
         let ramp = RgbImage::from_fn(w, 2, |i, _| [c * (i as f32 + 0.5) / w as f32; 3]).unwrap();
         let slot = |image: &RgbImage| SlotTexture {
-            image: Arc::new(ImageTexture::from_image(image).unwrap()),
             scale: s,
-            channel: None,
+            ..SlotTexture::of_image(Arc::new(ImageTexture::from_image(image).unwrap()))
         };
         let (dpdu, dpdv) = (l * Vec3::X, 0.8 * Vec3::Y);
         for u in [0.2f32, 0.45, 0.8] {

@@ -227,7 +227,7 @@ impl MaterialTextures {
     pub fn opacity(&self, uv: Vec2) -> f32 {
         let value = match (&self.opacity, self.opacity_constant) {
             (Some(t), _) => {
-                let channel = if t.image.has_alpha() {
+                let channel = if t.has_alpha() {
                     ALPHA_CHANNEL
                 } else {
                     DEFAULT_CHANNEL

@@ -3,7 +3,8 @@
 //! Conventions (OpenGL's and COLLADA's): `u` runs left to right across the
 //! image, `v` **bottom to top** (row 0 of the file, its top, is `v = 1`).
 //! Texel `(i, j)` covers `[i, i+1)/W × [j, j+1)/H` with its value at the
-//! centre; lookups are bilinear between the four nearest centres, and
+//! centre; lookups are bilinear between the four nearest centres (or the
+//! covering texel's, [`ImageTexture::nearest`]), and
 //! addressing wraps around (the image tiles the plane), so `u = 1.25` reads
 //! what `u = 0.25` reads.
 //!
@@ -21,7 +22,7 @@ mod cache;
 mod slot;
 
 pub use cache::TextureCache;
-pub use slot::SlotTexture;
+pub use slot::{SlotSource, SlotTexture};
 
 use candela_image::{read_exr, read_png, read_png_stored, srgb_decode, ImageError, RgbImage};
 use candela_scene::ColorSpace;
@@ -190,6 +191,34 @@ impl ImageTexture {
             }
             (_, None) => 1.0,
         }
+    }
+
+    /// The texel that covers `uv` (nearest-neighbour), wrapping around.
+    pub fn nearest(&self, uv: Vec2) -> Vec3 {
+        let (i, j) = self.covering_texel(uv);
+        self.texel(i, j)
+    }
+
+    /// Channel `c` of [`ImageTexture::nearest`] (3: alpha, 1 when the
+    /// image has none).
+    pub fn nearest_channel(&self, uv: Vec2, c: u8) -> f32 {
+        let (i, j) = self.covering_texel(uv);
+        match (c, &self.alpha) {
+            (0..=2, _) => self.texel(i, j)[c as usize],
+            (_, Some(alpha)) => alpha[self.texel_index(i, j)],
+            (_, None) => 1.0,
+        }
+    }
+
+    /// Column and row (from the bottom) of the texel whose square holds
+    /// `uv`, before wrapping; texel (0, 0) for a non-finite `uv`.
+    fn covering_texel(&self, uv: Vec2) -> (i64, i64) {
+        if !uv.is_finite() {
+            return (0, 0);
+        }
+        let x = (f64::from(uv.x) * self.width as f64).floor();
+        let y = (f64::from(uv.y) * self.height as f64).floor();
+        (x as i64, y as i64)
     }
 
     /// The gradient (∂/∂u, ∂/∂v) of [`ImageTexture::lookup_channel`] at

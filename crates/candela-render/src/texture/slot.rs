@@ -1,56 +1,166 @@
-//! A texture in a material's slot: the image, the slot's scale, and for
-//! one-value slots the channel that holds the value.
+//! A texture in a material's slot: its source (an image or a checkerboard),
+//! the slot's scale, for one-value slots the channel that holds the value,
+//! the image filter, and the uv transform. Every slot (colour, roughness,
+//! metalness, normal and bump maps, emission, opacity) reads through the
+//! methods here, so each gets every source, the filter and the transform
+//! alike: the surface's uv is transformed first, then the source is read
+//! there (an image tiles the plane, so a transformed uv outside [0, 1)
+//! repeats it).
 
 use super::{ImageTexture, TextureCache};
-use candela_scene::TextureRef;
+use candela_scene::{TextureFilter, TextureRef, TextureSource, UvTransform};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
-/// An image read for one material parameter.
+/// What a slot reads.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SlotSource {
+    /// An image, shared by every slot that names the same file and colour
+    /// space.
+    Image(Arc<ImageTexture>),
+    /// Two linear colours in a checkerboard
+    /// ([`TextureSource::Checkerboard`]).
+    Checkerboard {
+        /// The colour of the cell `[0, ½)²`.
+        color0: Vec3,
+        /// The colour of its neighbours.
+        color1: Vec3,
+    },
+}
+
+/// A texture read for one material parameter.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SlotTexture {
-    /// The image, shared by every slot that names the same file and colour
-    /// space.
-    pub image: Arc<ImageTexture>,
+    /// What is read.
+    pub source: SlotSource,
     /// Factor on every value read.
     pub scale: f32,
     /// The channel of a one-value slot (0 R, 1 G, 2 B, 3 alpha); `None`
     /// reads the slot's default (see [`SlotTexture::value`]).
     pub channel: Option<u8>,
+    /// How an image is read between texel centres.
+    pub filter: TextureFilter,
+    /// Applied to the surface's uv before the lookup.
+    pub uv: UvTransform,
 }
 
 impl SlotTexture {
+    /// `image`, unscaled, bilinear, at the surface's own uv.
+    pub fn of_image(image: Arc<ImageTexture>) -> Self {
+        Self {
+            source: SlotSource::Image(image),
+            scale: 1.0,
+            channel: None,
+            filter: TextureFilter::Bilinear,
+            uv: UvTransform::IDENTITY,
+        }
+    }
+
     /// Reads `t` through `cache`; `None` (and a message in the cache) when
-    /// the file cannot be used.
+    /// its image cannot be used.
     pub fn load(t: &TextureRef, cache: &mut TextureCache) -> Option<Self> {
+        let source = match &t.source {
+            TextureSource::Image(path) => SlotSource::Image(cache.get_in(path, t.color_space)?),
+            TextureSource::Checkerboard { color0, color1 } => SlotSource::Checkerboard {
+                color0: *color0,
+                color1: *color1,
+            },
+        };
         Some(Self {
-            image: cache.get_in(&t.path, t.color_space)?,
+            source,
             scale: t.scale,
             channel: t.channel,
+            filter: t.filter,
+            uv: t.uv,
         })
+    }
+
+    /// Whether the source has an alpha channel (only an image can).
+    pub fn has_alpha(&self) -> bool {
+        matches!(&self.source, SlotSource::Image(i) if i.has_alpha())
+    }
+
+    /// The source's mean colour over one period, unscaled: the texture's
+    /// average over any surface whose (transformed) uv covers whole
+    /// periods.
+    pub fn mean(&self) -> Vec3 {
+        match &self.source {
+            SlotSource::Image(image) => image.mean(),
+            SlotSource::Checkerboard { color0, color1 } => 0.5 * (*color0 + *color1),
+        }
+    }
+
+    /// The colour at surface coordinates `uv`, unscaled (a normal map's
+    /// encoded direction).
+    pub fn rgb(&self, uv: Vec2) -> Vec3 {
+        let st = self.uv.apply(uv);
+        match &self.source {
+            SlotSource::Image(image) => match self.filter {
+                TextureFilter::Bilinear => image.lookup(st),
+                TextureFilter::Nearest => image.nearest(st),
+            },
+            SlotSource::Checkerboard { color0, color1 } => checker(st, *color0, *color1),
+        }
     }
 
     /// The colour at `uv`, times the scale. A slot that names a channel
     /// reads that channel as grey.
     pub fn color(&self, uv: Vec2) -> Vec3 {
         match self.channel {
-            Some(c) => Vec3::splat(self.image.lookup_channel(uv, c) * self.scale),
-            None => self.image.lookup(uv) * self.scale,
+            Some(c) => Vec3::splat(self.channel_at(uv, c) * self.scale),
+            None => self.rgb(uv) * self.scale,
         }
     }
 
     /// The value at `uv`, times the scale: the named channel, else
     /// `default_channel`.
     pub fn value(&self, uv: Vec2, default_channel: u8) -> f32 {
-        self.image
-            .lookup_channel(uv, self.channel.unwrap_or(default_channel))
-            * self.scale
+        self.channel_at(uv, self.channel.unwrap_or(default_channel)) * self.scale
     }
 
-    /// The gradient (∂/∂u, ∂/∂v) of [`SlotTexture::value`] at `uv`.
+    /// The gradient (∂/∂u, ∂/∂v in the surface's uv) of
+    /// [`SlotTexture::value`] at `uv`: the bilinear interpolant's exact
+    /// derivative, carried back through the uv transform (chain rule). A
+    /// piecewise-constant source (nearest texels, a checkerboard) has
+    /// slope 0, as Mitsuba's is.
     pub fn gradient(&self, uv: Vec2, default_channel: u8) -> Vec2 {
-        self.image
-            .gradient_channel(uv, self.channel.unwrap_or(default_channel))
-            * self.scale
+        let c = self.channel.unwrap_or(default_channel);
+        let in_texture = match (&self.source, self.filter) {
+            (SlotSource::Image(image), TextureFilter::Bilinear) => {
+                image.gradient_channel(self.uv.apply(uv), c)
+            }
+            (SlotSource::Image(_), TextureFilter::Nearest)
+            | (SlotSource::Checkerboard { .. }, _) => Vec2::ZERO,
+        };
+        self.uv.pull_back_gradient(in_texture) * self.scale
+    }
+
+    /// Channel `c` (0 R, 1 G, 2 B, 3 alpha: 1 where the source has none)
+    /// at surface coordinates `uv`, unscaled.
+    fn channel_at(&self, uv: Vec2, c: u8) -> f32 {
+        let st = self.uv.apply(uv);
+        match &self.source {
+            SlotSource::Image(image) => match self.filter {
+                TextureFilter::Bilinear => image.lookup_channel(st, c),
+                TextureFilter::Nearest => image.nearest_channel(st, c),
+            },
+            SlotSource::Checkerboard { color0, color1 } => match c {
+                0..=2 => checker(st, *color0, *color1)[c as usize],
+                _ => 1.0,
+            },
+        }
     }
 }
+
+/// The checkerboard of `color0` and `color1` at texture coordinates `st`.
+fn checker(st: Vec2, color0: Vec3, color1: Vec3) -> Vec3 {
+    if TextureSource::checker_cell_is_even(st) {
+        color0
+    } else {
+        color1
+    }
+}
+
+#[cfg(test)]
+#[path = "slot_tests.rs"]
+mod tests;

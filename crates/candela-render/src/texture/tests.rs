@@ -162,9 +162,9 @@ fn a_2x2_png_decodes_to_its_known_values_in_either_colour_space() {
     }
     // A slot reading one channel (glTF roughness in G) sees it as grey.
     let slot = SlotTexture {
-        image: linear.clone(),
         scale: 0.5,
         channel: Some(1),
+        ..SlotTexture::of_image(linear.clone())
     };
     let uv = Vec2::new(0.25, 0.75);
     assert_eq!(slot.color(uv), Vec3::splat(64.0 / 255.0 * 0.5));

@@ -8,9 +8,8 @@
 //! on their [`TextureSlot`] (metalness 0, opacity 1, the geometry's own
 //! shading normal).
 
-use super::{PerturbationRules, SourceLoc};
+use super::{ColorSpace, PerturbationRules, SourceLoc, TextureRef};
 use glam::Vec3;
-use std::path::PathBuf;
 
 /// A material: one BSDF, optionally emissive, optionally textured.
 #[derive(Clone, Debug, PartialEq)]
@@ -63,62 +62,6 @@ impl MaterialDesc {
             textures: TextureSlots::default(),
             sides: Sides::Both,
             loc: SourceLoc::default(),
-        }
-    }
-}
-
-/// How a texture's stored values map to linear values.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum ColorSpace {
-    /// The sRGB transfer curve (8-bit colour images): decoded to linear.
-    #[default]
-    Srgb,
-    /// Stored values are linear already (data maps: roughness, normals, and
-    /// every floating-point image).
-    Linear,
-}
-
-impl ColorSpace {
-    /// The convention of an image file's format, for files that name no
-    /// colour space: floating-point formats (`.exr`, `.hdr`, `.pfm`) hold
-    /// linear values, 8-bit ones (PNG, JPEG, ...) sRGB.
-    pub fn of_image_file(path: &std::path::Path) -> ColorSpace {
-        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-        if ["exr", "hdr", "pfm"]
-            .iter()
-            .any(|f| ext.eq_ignore_ascii_case(f))
-        {
-            ColorSpace::Linear
-        } else {
-            ColorSpace::Srgb
-        }
-    }
-}
-
-/// An image texture reference: which file, how to read its values, and a
-/// factor applied to them.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TextureRef {
-    /// Path of the image, resolved relative to the scene file.
-    pub path: PathBuf,
-    /// How the stored values become linear ones.
-    pub color_space: ColorSpace,
-    /// Multiplies every (linear) value read from the image.
-    pub scale: f32,
-    /// For a one-value slot (roughness, metalness, opacity): the image
-    /// channel holding it (0 R, 1 G, 2 B, 3 A), as glTF packs roughness in G
-    /// and metalness in B of one image. `None`: the renderer's default.
-    pub channel: Option<u8>,
-}
-
-impl TextureRef {
-    /// The texture at `path`, read in `color_space`, unscaled.
-    pub fn new(path: impl Into<PathBuf>, color_space: ColorSpace) -> Self {
-        Self {
-            path: path.into(),
-            color_space,
-            scale: 1.0,
-            channel: None,
         }
     }
 }

@@ -13,21 +13,24 @@
 //!   A mesh no instance names is not drawn. Loaders whose format has no
 //!   sharing (COLLADA as read here bakes each `<instance_geometry>`) store
 //!   world-space meshes with one identity instance each ([`SceneDesc::add_mesh`]).
-//! - Materials carry a texture slot per parameter ([`material`]); cameras carry
-//!   their own projection ([`camera`]).
+//! - Materials carry a texture slot per parameter ([`material`]), each an
+//!   image or a procedural texture read through its own uv transform
+//!   ([`texture`]); cameras carry their own projection ([`camera`]).
 
 mod camera;
 mod material;
 mod perturbation;
 mod smooth_normals;
 mod tangents;
+mod texture;
 
 pub use camera::{CameraDesc, Projection};
 pub use material::{
-    Alpha, BsdfDesc, ColorSpace, InternalReflectance, Masking, MaterialDesc, MicrofacetModel,
-    PrincipledParameters, Sides, TextureRef, TextureSlot, TextureSlots,
+    Alpha, BsdfDesc, InternalReflectance, Masking, MaterialDesc, MicrofacetModel,
+    PrincipledParameters, Sides, TextureSlot, TextureSlots,
 };
 pub use perturbation::{AwayFromViewer, PerturbationRules, TangentFrame};
+pub use texture::{ColorSpace, TextureFilter, TextureRef, TextureSource, UvTransform};
 
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;

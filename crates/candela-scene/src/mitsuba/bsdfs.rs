@@ -24,24 +24,17 @@
 //! evaluates its first BSDF there, or its second when it has two.
 
 use super::doc::{elements, Doc, XNode};
+use super::textures::{for_slot, Texture};
 use super::values::{boolean, constant_color, float, float_of, string};
 use super::{tables, Builder};
 use crate::desc::{
-    Alpha, AwayFromViewer, BsdfDesc, ColorSpace, InternalReflectance, Masking, MaterialDesc,
+    Alpha, AwayFromViewer, BsdfDesc, InternalReflectance, Masking, MaterialDesc,
     MicrofacetModel, PerturbationRules, Sides, TextureRef, TextureSlot, TextureSlots,
 };
 use crate::error::{ErrorKind, LoadError};
 use glam::Vec3;
 
-/// A texture as this loader keeps it: an image, or a constant that stands
-/// for a procedural texture Candela lacks.
-#[derive(Clone, Debug)]
-pub(super) enum Texture {
-    Image(TextureRef),
-    Constant(Vec3),
-}
-
-/// A parameter that is a constant, maybe replaced by an image.
+/// A parameter that is a constant, maybe replaced by a texture.
 type Param = (Vec3, Option<TextureRef>);
 
 impl Builder {
@@ -266,7 +259,7 @@ impl Builder {
                     } else {
                         TextureSlot::Normal
                     };
-                    m.textures.set(slot, tex);
+                    set(&mut m.textures, slot, Some(tex));
                 }
                 m.textures.perturbation = self.perturbation_rules(doc, node)?;
             }
@@ -344,7 +337,7 @@ impl Builder {
         Ok(rules)
     }
 
-    /// The image of a bump or normal map (a `<texture>` or `<ref>` child).
+    /// The texture of a bump or normal map (a `<texture>` or `<ref>` child).
     fn map_texture(&mut self, doc: &Doc, node: XNode) -> Result<Option<TextureRef>, LoadError> {
         for c in elements(node) {
             let t = match c.tag_name().name() {
@@ -357,7 +350,7 @@ impl Builder {
             };
             // Read as the texture says, as Mitsuba does: a map wants
             // `raw` (else its PNG is decoded from sRGB first).
-            if let Texture::Image(t) = t {
+            if let Texture::Varying(t) = t {
                 return Ok(Some(t));
             }
         }
@@ -388,49 +381,7 @@ impl Builder {
         })
     }
 
-    /// A `<texture>` element.
-    pub(super) fn texture(&mut self, doc: &Doc, node: XNode) -> Result<Texture, LoadError> {
-        if let Some(t) = doc.prop(node, "to_uv")? {
-            self.warn(
-                doc,
-                t,
-                "a texture's to_uv is not supported (read at the surface's own uv)",
-            )?;
-        }
-        match doc.plugin_type(node)?.as_str() {
-            "bitmap" => {
-                let path = self.existing_file(doc, node)?;
-                let raw = boolean(doc, node, "raw", false)?;
-                let color_space = if raw {
-                    ColorSpace::Linear
-                } else {
-                    ColorSpace::of_image_file(&path)
-                };
-                Ok(Texture::Image(TextureRef::new(path, color_space)))
-            }
-            "checkerboard" => {
-                self.warn(
-                    doc,
-                    node,
-                    "checkerboard texture rendered as the mean of its colours",
-                )?;
-                let a = self.constant(doc, node, "color0", Vec3::splat(0.4))?;
-                let b = self.constant(doc, node, "color1", Vec3::splat(0.2))?;
-                Ok(Texture::Constant(0.5 * (a + b)))
-            }
-            "mesh_attribute" | "volume" => {
-                self.warn(doc, node, "texture type rendered as grey 0.5")?;
-                Ok(Texture::Constant(Vec3::splat(0.5)))
-            }
-            other => Err(doc.err(
-                node,
-                ErrorKind::BadValue,
-                format!("unknown texture type \"{other}\""),
-            )),
-        }
-    }
-
-    /// Colour property `name`: a constant, or an image (its constant
+    /// Colour property `name`: a constant, or a texture (its constant
     /// `default`).
     pub(super) fn color(
         &mut self,
@@ -466,13 +417,13 @@ impl Builder {
             }
         };
         Ok(match texture {
-            Texture::Image(t) => (default, Some(t)),
+            Texture::Varying(t) => (default, Some(t)),
             Texture::Constant(c) => (c, None),
         })
     }
 
-    /// A colour property that Candela cannot texture: an image is reported
-    /// and replaced by `default`.
+    /// A colour property that Candela cannot texture: a texture is
+    /// reported and replaced by `default`.
     pub(super) fn constant(
         &mut self,
         doc: &Doc,
@@ -571,9 +522,11 @@ fn check_alpha(doc: &Doc, node: XNode, alpha: f32) -> Result<f32, LoadError> {
     }
 }
 
-fn set(textures: &mut TextureSlots, slot: TextureSlot, texture: Option<TextureRef>) {
+/// Puts `texture` (if any) into `slot`, read as Mitsuba reads a texture
+/// there ([`for_slot`]).
+pub(super) fn set(textures: &mut TextureSlots, slot: TextureSlot, texture: Option<TextureRef>) {
     if let Some(t) = texture {
-        textures.set(slot, t);
+        textures.set(slot, for_slot(slot, t));
     }
 }
 

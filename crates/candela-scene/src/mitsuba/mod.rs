@@ -6,7 +6,7 @@
 //!   file's defaults); `<include filename>` relative to the including file
 //!   (cycles are an error); `<ref id>` to named BSDFs, textures and shape
 //!   groups.
-//! - Shapes, BSDFs, textures: see `shapes.rs` and `bsdfs.rs`; emitters
+//! - Shapes, BSDFs, textures: see `shapes.rs`, `bsdfs.rs` and `textures.rs`; emitters
 //!   `emitters.rs`; the sensor, film, sampler and integrator `sensor.rs`
 //!   (they become [`crate::RenderHints`]).
 //! - Coordinates are kept as they are: Mitsuba's world has no up axis of its
@@ -25,6 +25,7 @@ mod serialized;
 mod shapes;
 mod tables;
 mod tessellate;
+mod textures;
 mod transform;
 mod values;
 
@@ -77,7 +78,7 @@ struct Builder {
     /// The material index already made for a named BSDF.
     bsdf_materials: HashMap<String, usize>,
     /// Named textures (`<texture id>`).
-    textures: HashMap<String, bsdfs::Texture>,
+    textures: HashMap<String, textures::Texture>,
     /// Shape groups (`<shape type="shapegroup" id>`).
     groups: HashMap<String, Vec<shapes::GroupItem>>,
     /// Index of the grey material of shapes that name none.

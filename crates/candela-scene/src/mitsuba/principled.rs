@@ -31,9 +31,7 @@ impl Builder {
     ) -> Result<BsdfDesc, LoadError> {
         let mut textured = |b: &mut Self, name: &str, slot: TextureSlot, default: f32| {
             let (value, tex) = b.color(doc, node, name, Vec3::splat(default))?;
-            if let Some(t) = tex {
-                textures.set(slot, t);
-            }
+            super::bsdfs::set(textures, slot, tex);
             Ok::<Vec3, LoadError>(value)
         };
         let base_color = textured(self, "base_color", TextureSlot::Color, 0.5)?;

@@ -1,0 +1,201 @@
+//! A slot's reads checked analytically: the checkerboard's cells, the uv
+//! transform's effect on an image (repeats, shifts, order of composition),
+//! nearest texels, and bump gradients carried through the transform.
+
+use super::*;
+use candela_image::RgbImage;
+use glam::Affine2;
+
+const RED: Vec3 = Vec3::new(1.0, 0.0, 0.0);
+const BLUE: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+
+/// Two texel columns: `RED` on the left half (u < ½), `BLUE` on the right.
+fn halves() -> Arc<ImageTexture> {
+    let image = RgbImage::from_pixels(2, 1, vec![RED.to_array(), BLUE.to_array()]).unwrap();
+    Arc::new(ImageTexture::from_image(&image).unwrap())
+}
+
+/// A smooth-ish 5 × 3 image whose bilinear interpolant has a different
+/// slope in every cell.
+fn varied() -> Arc<ImageTexture> {
+    let image = RgbImage::from_fn(5, 3, |i, j| {
+        let v = ((i * 7 + j * 3) % 11) as f32 / 11.0;
+        [v, 1.0 - v, 0.5 * v]
+    })
+    .unwrap();
+    Arc::new(ImageTexture::from_image(&image).unwrap())
+}
+
+fn nearest(image: Arc<ImageTexture>, uv: Affine2) -> SlotTexture {
+    SlotTexture {
+        filter: TextureFilter::Nearest,
+        uv: UvTransform(uv),
+        ..SlotTexture::of_image(image)
+    }
+}
+
+fn checkerboard(uv: Affine2) -> SlotTexture {
+    SlotTexture {
+        source: SlotSource::Checkerboard {
+            color0: RED,
+            color1: BLUE,
+        },
+        uv: UvTransform(uv),
+        ..SlotTexture::of_image(halves())
+    }
+}
+
+#[test]
+fn a_checkerboard_of_scale_s_has_2s_alternating_cells_per_side() {
+    for s in [1u32, 2, 4] {
+        let slot = checkerboard(Affine2::from_scale(Vec2::splat(s as f32)));
+        let n = 2 * s; // cells per side of the unit square
+        let mut count = [0u32; 2];
+        for i in 0..n {
+            for j in 0..n {
+                let centre = (Vec2::new(i as f32, j as f32) + 0.5) / n as f32;
+                let expected = if (i + j) % 2 == 0 { RED } else { BLUE };
+                assert_eq!(slot.rgb(centre), expected, "scale {s}, cell ({i}, {j})");
+                count[((i + j) % 2) as usize] += 1;
+            }
+        }
+        // Half of the n² cells each: 16 cells for scale 2, 64 for scale 4.
+        assert_eq!(count, [n * n / 2; 2], "scale {s}");
+    }
+    // Outside [0, 1)² the pattern continues with period 1.
+    let plain = checkerboard(Affine2::IDENTITY);
+    for uv in [Vec2::new(0.25, 0.25), Vec2::new(0.75, 0.25)] {
+        for k in [-3.0, -1.0, 1.0, 5.0] {
+            assert_eq!(
+                plain.rgb(uv + Vec2::new(k, -k)),
+                plain.rgb(uv),
+                "{uv} + {k}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_checkerboard_in_a_one_value_slot_reads_the_channel_and_has_no_slope() {
+    let slot = SlotTexture {
+        scale: 0.5,
+        ..checkerboard(Affine2::IDENTITY)
+    };
+    let (in0, in1) = (Vec2::new(0.1, 0.2), Vec2::new(0.6, 0.2));
+    assert_eq!(slot.value(in0, 0), 0.5);
+    assert_eq!(slot.value(in1, 0), 0.0);
+    assert_eq!(slot.value(in1, 2), 0.5);
+    assert_eq!(slot.value(in1, 3), 0.5, "no alpha: opaque");
+    assert!(!slot.has_alpha());
+    assert_eq!(slot.gradient(in0, 0), Vec2::ZERO);
+}
+
+#[test]
+fn a_scale_of_two_repeats_the_image_twice() {
+    let image = varied();
+    let once = SlotTexture::of_image(image.clone());
+    let twice = SlotTexture {
+        uv: UvTransform(Affine2::from_scale(Vec2::new(2.0, 2.0))),
+        ..SlotTexture::of_image(image)
+    };
+    for uv in [
+        Vec2::new(0.1, 0.2),
+        Vec2::new(0.37, 0.41),
+        Vec2::new(0.05, 0.49),
+    ] {
+        let expected = once.rgb(2.0 * uv);
+        for shift in [
+            Vec2::ZERO,
+            Vec2::new(0.5, 0.0),
+            Vec2::new(0.0, 0.5),
+            Vec2::splat(0.5),
+        ] {
+            let got = twice.rgb(uv + shift);
+            assert!(
+                (got - expected).abs().max_element() < 1e-5,
+                "{got} vs {expected} at {uv} + {shift}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_translation_by_a_half_swaps_the_halves() {
+    let plain = nearest(halves(), Affine2::IDENTITY);
+    let shifted = nearest(halves(), Affine2::from_translation(Vec2::new(0.5, 0.0)));
+    for v in [0.1, 0.6] {
+        assert_eq!(plain.rgb(Vec2::new(0.25, v)), RED);
+        assert_eq!(plain.rgb(Vec2::new(0.75, v)), BLUE);
+        assert_eq!(shifted.rgb(Vec2::new(0.25, v)), BLUE);
+        assert_eq!(shifted.rgb(Vec2::new(0.75, v)), RED);
+    }
+}
+
+#[test]
+fn scale_then_translate_differs_from_translate_then_scale() {
+    // Scale then shift reads u' = 2u + ¼, shift then scale u' = 2(u + ¼):
+    // at u = 0.05 that is 0.35 (red) one way and 0.6 (blue) the other.
+    let scale = UvTransform(Affine2::from_scale(Vec2::new(2.0, 1.0)));
+    let shift = UvTransform(Affine2::from_translation(Vec2::new(0.25, 0.0)));
+    let a = nearest(halves(), scale.then(shift).0);
+    let b = nearest(halves(), shift.then(scale).0);
+    let uv = Vec2::new(0.05, 0.5);
+    assert_eq!(a.rgb(uv), RED);
+    assert_eq!(b.rgb(uv), BLUE);
+}
+
+#[test]
+fn nearest_reads_the_covering_texel_and_has_no_slope() {
+    let image = varied();
+    let slot = nearest(image.clone(), Affine2::IDENTITY);
+    let (w, h) = image.size();
+    for i in 0..w as i64 {
+        for j in 0..h as i64 {
+            // Anywhere inside texel (i, j), not only at its centre.
+            for (fx, fy) in [(0.01, 0.02), (0.5, 0.5), (0.98, 0.97)] {
+                let uv = Vec2::new((i as f32 + fx) / w as f32, (j as f32 + fy) / h as f32);
+                assert_eq!(slot.rgb(uv), image.texel(i, j), "texel ({i}, {j}) at {uv}");
+                assert_eq!(slot.value(uv, 1), image.texel(i, j).y);
+            }
+        }
+    }
+    assert_eq!(slot.gradient(Vec2::new(0.3, 0.3), 0), Vec2::ZERO);
+}
+
+#[test]
+fn a_bump_gradient_follows_the_transform_by_the_chain_rule() {
+    // Central differences of the value through a rotated, scaled and
+    // shifted uv, against the slot's analytic gradient, away from the
+    // kinks of the bilinear interpolant (where the difference straddles
+    // two cells).
+    let m = Affine2::from_scale_angle_translation(Vec2::new(2.0, 3.0), 0.4, Vec2::new(0.3, -0.2));
+    let slot = SlotTexture {
+        uv: UvTransform(m),
+        ..SlotTexture::of_image(varied())
+    };
+    let h = 1e-4f32;
+    let mut checked = 0;
+    for k in 0..40 {
+        let uv = Vec2::new(0.013 + 0.0237 * k as f32, 0.71 - 0.0173 * k as f32);
+        let g = slot.gradient(uv, 0);
+        let du = (slot.value(uv + Vec2::X * h, 0) - slot.value(uv - Vec2::X * h, 0)) / (2.0 * h);
+        let dv = (slot.value(uv + Vec2::Y * h, 0) - slot.value(uv - Vec2::Y * h, 0)) / (2.0 * h);
+        // The four probes in one bilinear cell: their gradients differ by
+        // the interpolant's small twist only, not by a jump between cells.
+        let near = 1e-2 * (1.0 + g.abs().max_element());
+        let same_cell = [Vec2::X, -Vec2::X, Vec2::Y, -Vec2::Y]
+            .iter()
+            .all(|d| (slot.gradient(uv + *d * h, 0) - g).abs().max_element() < near);
+        if !same_cell {
+            continue;
+        }
+        checked += 1;
+        // f32 differences of values ~1 over 2h: error ~1e-7/1e-4 per unit slope.
+        let tol = 0.02 * (1.0 + g.abs().max_element());
+        assert!(
+            (Vec2::new(du, dv) - g).abs().max_element() < tol,
+            "{g} vs ({du}, {dv}) at {uv}"
+        );
+    }
+    assert!(checked >= 20, "only {checked} points away from kinks");
+}

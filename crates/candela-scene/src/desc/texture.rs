@@ -1,0 +1,230 @@
+//! Textures as the description names them: what is read (an image file or
+//! a procedural pattern), how its values become linear ones, how it is
+//! filtered, and the affine map applied to the surface's uv before the
+//! lookup. Every texture slot of a material holds one [`TextureRef`], so a
+//! slot (colour, roughness, normal or bump map, emission, opacity) gets
+//! every kind of texture and the uv transform through the same type.
+//!
+//! UV convention (every loader converts to it): `u` runs left to right
+//! across an image, `v` bottom to top (an image's top row is at `v = 1`),
+//! and textures tile the plane with period 1 in both.
+
+use glam::{Affine2, Mat2, Vec2, Vec3};
+use std::path::{Path, PathBuf};
+
+/// How a texture's stored values map to linear values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ColorSpace {
+    /// The sRGB transfer curve (8-bit colour images): decoded to linear.
+    #[default]
+    Srgb,
+    /// Stored values are linear already (data maps: roughness, normals, and
+    /// every floating-point image).
+    Linear,
+}
+
+impl ColorSpace {
+    /// The convention of an image file's format, for files that name no
+    /// colour space: floating-point formats (`.exr`, `.hdr`, `.pfm`) hold
+    /// linear values, 8-bit ones (PNG, JPEG, ...) sRGB.
+    pub fn of_image_file(path: &Path) -> ColorSpace {
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+        if ["exr", "hdr", "pfm"]
+            .iter()
+            .any(|f| ext.eq_ignore_ascii_case(f))
+        {
+            ColorSpace::Linear
+        } else {
+            ColorSpace::Srgb
+        }
+    }
+}
+
+/// What a texture reads: an image, or a pattern computed from uv.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TextureSource {
+    /// An image file, resolved relative to the scene file.
+    Image(PathBuf),
+    /// Two linear colours in a checkerboard of period 1 in u and v:
+    /// `color0` where ⌊2u⌋ + ⌊2v⌋ is even (the cell `[0, ½)²` and every
+    /// second cell from it), `color1` elsewhere. Not filtered: its edges
+    /// are sharp at any distance, as Mitsuba's `checkerboard` is.
+    Checkerboard {
+        /// The colour of the cell `[0, ½)²`.
+        color0: Vec3,
+        /// The colour of its neighbours.
+        color1: Vec3,
+    },
+}
+
+impl TextureSource {
+    /// Whether `uv` lies in one of the checkerboard's `color0` cells (see
+    /// [`TextureSource::Checkerboard`]).
+    pub fn checker_cell_is_even(uv: Vec2) -> bool {
+        let cell = (2.0 * uv).floor();
+        // f64 so huge coordinates do not lose the parity in rounding.
+        (f64::from(cell.x) + f64::from(cell.y)).rem_euclid(2.0) == 0.0
+    }
+}
+
+/// How an image is read between texel centres.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TextureFilter {
+    /// Bilinear between the four nearest texel centres.
+    #[default]
+    Bilinear,
+    /// The texel that covers the point (Mitsuba's `filter_type` `nearest`):
+    /// piecewise constant, so a bump map of it has slope 0.
+    Nearest,
+}
+
+/// An affine map from the surface's uv to the texture's: the texture is
+/// read at `matrix · uv` (glTF's `KHR_texture_transform`, Mitsuba's
+/// `to_uv`). The identity reads at the surface's own uv.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvTransform(pub Affine2);
+
+impl Default for UvTransform {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
+impl UvTransform {
+    /// Reads at the surface's own uv.
+    pub const IDENTITY: Self = Self(Affine2::IDENTITY);
+
+    /// The texture coordinates of surface coordinates `uv`.
+    #[inline]
+    pub fn apply(&self, uv: Vec2) -> Vec2 {
+        self.0.transform_point2(uv)
+    }
+
+    /// Whether the map leaves uv as it is.
+    pub fn is_identity(&self) -> bool {
+        *self == Self::IDENTITY
+    }
+
+    /// This map followed by `after` (the texture is read at
+    /// `after · self · uv`).
+    pub fn then(self, after: UvTransform) -> Self {
+        Self(after.0 * self.0)
+    }
+
+    /// The linear part (∂ texture uv / ∂ surface uv).
+    pub fn jacobian(&self) -> Mat2 {
+        self.0.matrix2
+    }
+
+    /// A gradient taken in the texture's coordinates, as one in the
+    /// surface's: the chain rule, Jᵀ·g (a bump map tiled twice in u has
+    /// twice the slope along u).
+    #[inline]
+    pub fn pull_back_gradient(&self, g: Vec2) -> Vec2 {
+        self.jacobian().transpose() * g
+    }
+}
+
+/// A texture in a material slot: its source, how to read its values, a
+/// factor applied to them, and where on the surface it is read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureRef {
+    /// An image or a procedural pattern.
+    pub source: TextureSource,
+    /// How an image's stored values become linear ones (procedural colours
+    /// are linear already).
+    pub color_space: ColorSpace,
+    /// Multiplies every (linear) value read.
+    pub scale: f32,
+    /// For a one-value slot (roughness, metalness, opacity): the channel
+    /// holding it (0 R, 1 G, 2 B, 3 A), as glTF packs roughness in G and
+    /// metalness in B of one image. `None`: the renderer's default.
+    pub channel: Option<u8>,
+    /// How an image is read between texel centres.
+    pub filter: TextureFilter,
+    /// Applied to the surface's uv before the lookup.
+    pub uv: UvTransform,
+}
+
+impl TextureRef {
+    /// The image at `path`, read in `color_space`, unscaled, bilinear, at
+    /// the surface's own uv.
+    pub fn new(path: impl Into<PathBuf>, color_space: ColorSpace) -> Self {
+        Self::of(TextureSource::Image(path.into()), color_space)
+    }
+
+    /// A checkerboard of `color0` and `color1` (linear), at the surface's
+    /// own uv.
+    pub fn checkerboard(color0: Vec3, color1: Vec3) -> Self {
+        Self::of(
+            TextureSource::Checkerboard { color0, color1 },
+            ColorSpace::Linear,
+        )
+    }
+
+    fn of(source: TextureSource, color_space: ColorSpace) -> Self {
+        Self {
+            source,
+            color_space,
+            scale: 1.0,
+            channel: None,
+            filter: TextureFilter::default(),
+            uv: UvTransform::IDENTITY,
+        }
+    }
+
+    /// The image file, if the texture reads one.
+    pub fn image_path(&self) -> Option<&Path> {
+        match &self.source {
+            TextureSource::Image(p) => Some(p),
+            TextureSource::Checkerboard { .. } => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checkerboard_cells_alternate_in_u_and_v_with_period_one() {
+        // Cell centres of a 4×4 grid over [-1, 1)²: even exactly when the
+        // cell indices' sum is.
+        for i in -2..2 {
+            for j in -2..2 {
+                let centre = Vec2::new(i as f32 + 0.5, j as f32 + 0.5) * 0.5;
+                let even = (i + j) % 2 == 0;
+                assert_eq!(
+                    TextureSource::checker_cell_is_even(centre),
+                    even,
+                    "cell ({i}, {j})"
+                );
+            }
+        }
+        // The cell [0, ½)² is color0's, closed at 0 and open at ½.
+        assert!(TextureSource::checker_cell_is_even(Vec2::ZERO));
+        assert!(!TextureSource::checker_cell_is_even(Vec2::new(0.5, 0.0)));
+    }
+
+    #[test]
+    fn uv_transforms_compose_in_order_and_pull_gradients_back() {
+        let scale = UvTransform(Affine2::from_scale(Vec2::new(2.0, 3.0)));
+        let shift = UvTransform(Affine2::from_translation(Vec2::new(0.5, 0.0)));
+        let uv = Vec2::new(0.1, 0.2);
+        // Scale then shift: 2·0.1 + 0.5, 3·0.2.
+        let a = scale.then(shift).apply(uv);
+        assert!((a - Vec2::new(0.7, 0.6)).abs().max_element() < 1e-6, "{a}");
+        // Shift then scale: 2·(0.1 + 0.5), 3·0.2.
+        let b = shift.then(scale).apply(uv);
+        assert!((b - Vec2::new(1.2, 0.6)).abs().max_element() < 1e-6, "{b}");
+        assert!(UvTransform::default().is_identity());
+        assert_eq!(
+            scale.pull_back_gradient(Vec2::new(1.0, 1.0)),
+            Vec2::new(2.0, 3.0)
+        );
+        // A rotation's gradient turns back by the transpose.
+        let quarter = UvTransform(Affine2::from_angle(std::f32::consts::FRAC_PI_2));
+        let g = quarter.pull_back_gradient(Vec2::new(1.0, 0.0));
+        assert!((g - Vec2::new(0.0, -1.0)).abs().max_element() < 1e-6, "{g}");
+    }
+}
