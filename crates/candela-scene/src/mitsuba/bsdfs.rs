@@ -28,8 +28,8 @@ use super::textures::{for_slot, Texture};
 use super::values::{boolean, constant_color, float, float_of, string};
 use super::{tables, Builder};
 use crate::desc::{
-    Alpha, AwayFromViewer, BsdfDesc, InternalReflectance, Masking, MaterialDesc,
-    MicrofacetModel, PerturbationRules, Sides, TextureRef, TextureSlot, TextureSlots,
+    Alpha, AwayFromViewer, BsdfDesc, InternalReflectance, Masking, MaterialDesc, MicrofacetModel,
+    PerturbationRules, Sides, TextureRef, TextureSlot, TextureSlots,
 };
 use crate::error::{ErrorKind, LoadError};
 use glam::Vec3;
