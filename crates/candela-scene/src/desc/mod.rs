@@ -21,7 +21,7 @@ mod material;
 mod perturbation;
 mod tangents;
 
-pub use camera::{CameraDesc, Projection};
+pub use camera::{CameraDesc, ClipRange, Projection};
 pub use material::{
     Alpha, BsdfDesc, ColorSpace, Masking, MaterialDesc, MicrofacetModel, PrincipledParameters,
     Sides, TextureRef, TextureSlot, TextureSlots,
