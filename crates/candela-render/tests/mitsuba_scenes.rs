@@ -56,6 +56,7 @@ fn collada_with_cs184_camera() -> SceneDesc {
         },
         znear: None,
         zfar: None,
+        clip: None,
         loc: SourceLoc::default(),
     }];
     desc

@@ -5,8 +5,9 @@
 //! Malformed files are in `tests/malformed/` (`*-mitsuba-*.xml`).
 
 use candela_scene::{
-    load, Alpha, BsdfDesc, ColorSpace, EnvironmentDesc, FilterHint, LightKind, LoadOptions, Loaded,
-    MicrofacetModel, PerturbationRules, PrincipledParameters, Projection, SpotEdge,
+    load, Alpha, BsdfDesc, ClipRange, ColorSpace, EnvironmentDesc, EnvironmentLookup, FilterHint,
+    LightKind, LoadOptions, Loaded, MicrofacetModel, PerturbationRules, PrincipledParameters,
+    Projection, SpotEdge,
 };
 use glam::Vec3;
 use proptest::prelude::*;
@@ -798,3 +799,48 @@ const TINY_PNG: &[u8] = &[
     0x82, 0x00, 0x81, 0x77, 0xcd, 0x72, 0xb6, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae,
     0x42, 0x60, 0x82,
 ];
+
+#[test]
+fn sensors_carry_their_clip_range_and_envmaps_mitsubas_lookup() {
+    let dir = candela_testkit::TempDir::new("mitsuba-clip");
+    std::fs::write(dir.join("sky.exr"), b"not read by the loader").unwrap();
+    let path = dir.join("clip.xml");
+    std::fs::write(
+        &path,
+        r#"<scene version="3.0.0">
+    <sensor type="perspective">
+        <float name="near_clip" value="3.5"/>
+        <float name="far_clip" value="40"/>
+    </sensor>
+    <sensor type="thinlens">
+        <float name="aperture_radius" value="0.1"/>
+        <float name="focus_distance" value="2"/>
+    </sensor>
+    <emitter type="envmap"><string name="filename" value="sky.exr"/></emitter>
+    <shape type="cube"/>
+</scene>"#,
+    )
+    .unwrap();
+    let l = load(&path, &strict()).unwrap();
+    let clips: Vec<_> = l.scene.cameras.iter().map(|c| c.clip).collect();
+    assert_eq!(
+        clips,
+        [
+            Some(ClipRange {
+                near: 3.5,
+                far: 40.0
+            }),
+            // Mitsuba's defaults.
+            Some(ClipRange {
+                near: 0.01,
+                far: 10_000.0
+            }),
+        ]
+    );
+    match &l.scene.environment {
+        Some(EnvironmentDesc::Map { lookup, .. }) => {
+            assert_eq!(*lookup, EnvironmentLookup::BilinearPoleRows)
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -13,7 +13,7 @@
 //! where the eye is for it).
 
 use super::Camera;
-use candela_scene::{CameraDesc, Projection, SceneDesc};
+use candela_scene::{CameraDesc, ClipRange, Projection, SceneDesc};
 use glam::{Vec2, Vec3, Vec4};
 
 /// How to place the camera. Written `cs184`, `file` or a number `N` (on
@@ -149,6 +149,10 @@ pub fn frame_scene(
     };
     if let Some(desc) = file {
         apply_projection(&mut camera, desc.projection)?;
+        // Planes measured from the file's eye mean nothing for the orbit's.
+        if mode != CameraMode::Cs184 {
+            camera.clip = checked_clip(desc.clip)?;
+        }
     }
     let finite = camera.eye.is_finite()
         && camera.forward.is_finite()
@@ -246,6 +250,17 @@ fn apply_projection(camera: &mut Camera, projection: Projection) -> Result<(), F
         }
     }
     Ok(())
+}
+
+/// A clip range the renderer can apply: 0 ≤ near < far (far may be
+/// infinite).
+fn checked_clip(clip: Option<ClipRange>) -> Result<Option<ClipRange>, FramingError> {
+    match clip {
+        Some(c) if !(c.near >= 0.0 && c.near.is_finite() && c.far > c.near) => {
+            Err(FramingError::Degenerate("clip range is empty"))
+        }
+        _ => Ok(clip),
+    }
 }
 
 /// The literal file camera: node origin, local -Z, local +Y up. The file's

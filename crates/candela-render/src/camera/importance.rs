@@ -99,7 +99,7 @@ impl Camera {
         let d = Vec2::new(dir.dot(self.right), dir.dot(self.up)) / cos;
         // Slopes (x/z, y/z) of the pinhole ray through the same film point.
         let slope = if self.lens_radius > 0.0 {
-            let o = ray.origin - self.eye;
+            let o = self.lens_point(ray) - self.eye;
             let lens = Vec2::new(o.dot(self.right), o.dot(self.up));
             (lens + d * self.focal_distance) / self.focal_distance
         } else {
@@ -151,10 +151,10 @@ impl Camera {
     /// Connects point `p` to the camera: a lens point from `u_lens` (the
     /// concentric disk, as [`Camera::generate_ray`] maps it; the eye for a
     /// pinhole), the direction toward it and the importance of the ray from
-    /// it to `p`. `None` when `p` is outside the view, at the lens point,
-    /// or the camera is orthographic.
+    /// it to `p`. `None` when `p` is outside the view or the clip range,
+    /// at the lens point, or the camera is orthographic.
     pub fn sample_wi(&self, p: Vec3, u_lens: Vec2) -> Option<CameraWiSample> {
-        if self.orthographic.is_some() {
+        if self.orthographic.is_some() || !self.in_clip_range(p) {
             return None;
         }
         let lens = square_to_concentric_disk(u_lens) * self.lens_radius.max(0.0);

@@ -28,6 +28,7 @@ pub use view::CameraView;
 
 use crate::geometry::Ray;
 use crate::sampling::warp::square_to_concentric_disk;
+pub use candela_scene::ClipRange;
 use glam::{Vec2, Vec3};
 
 /// A perspective camera for a `width` × `height` image.
@@ -60,6 +61,9 @@ pub struct Camera {
     /// The pixel reconstruction filter: where in the film a pixel's
     /// samples come from (`filter.rs`); the one-pixel box by default.
     pub filter: FilmFilter,
+    /// Clip planes across the view axis (Mitsuba's `near_clip` and
+    /// `far_clip`, see [`ClipRange`]); `None` sees everything.
+    pub clip: Option<ClipRange>,
 }
 
 impl Camera {
@@ -90,6 +94,7 @@ impl Camera {
             focal_distance: (target - eye).length(),
             orthographic: None,
             filter: FilmFilter::default(),
+            clip: None,
         }
     }
 
@@ -118,8 +123,52 @@ impl Camera {
 
     /// The ray through film position `film` (in pixels, x to the right, y
     /// down from the top-left corner) and lens sample `u_lens` in [0,1)².
-    /// An orthographic camera has no lens: `u_lens` is not used.
+    /// An orthographic camera has no lens: `u_lens` is not used. With clip
+    /// planes the ray starts on the near plane and ends on the far one
+    /// ([`Camera::clipped`]).
     pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> Ray {
+        let ray = self.unclipped_ray(film, u_lens);
+        self.clipped(ray)
+    }
+
+    /// `ray` (leaving the lens plane) cut to the clip range, as Mitsuba's
+    /// sensors do: its origin moves to the near plane and its end to the
+    /// far one. The planes lie across the view axis, so along a ray at
+    /// angle θ to it the distances are `near / cos θ` and `far / cos θ`.
+    /// The start moves rather than a minimum distance being kept, so
+    /// every consumer of the ray (traversal, the path tracer, BDPT's
+    /// first vertex) sees the clip without knowing of it.
+    pub fn clipped(&self, mut ray: Ray) -> Ray {
+        let Some(clip) = self.clip else {
+            return ray;
+        };
+        let inv_cos = 1.0 / ray.dir.dot(self.forward);
+        let (near_t, far_t) = (clip.near * inv_cos, clip.far * inv_cos);
+        ray.origin += ray.dir * near_t;
+        ray.t_max = far_t - near_t;
+        ray
+    }
+
+    /// Where `ray`, which may have been moved forward by
+    /// [`Camera::clipped`], left the lens plane (the plane through the eye
+    /// across the view axis).
+    pub fn lens_point(&self, ray: &Ray) -> Vec3 {
+        let depth = (ray.origin - self.eye).dot(self.forward);
+        if depth == 0.0 {
+            return ray.origin;
+        }
+        ray.origin - ray.dir * (depth / ray.dir.dot(self.forward))
+    }
+
+    /// Whether point `p` lies between the clip planes (always without).
+    pub fn in_clip_range(&self, p: Vec3) -> bool {
+        self.clip.is_none_or(|c| {
+            let depth = (p - self.eye).dot(self.forward);
+            depth >= c.near && depth <= c.far
+        })
+    }
+
+    fn unclipped_ray(&self, film: Vec2, u_lens: Vec2) -> Ray {
         let nx = 2.0 * film.x / self.width as f32 - 1.0;
         let ny = 1.0 - 2.0 * film.y / self.height as f32;
         if let Some(half) = self.orthographic {
@@ -211,6 +260,59 @@ pub(crate) mod tests {
             lens.generate_ray(film, Vec2::ZERO),
         );
         assert_ne!(a.origin, b.origin);
+    }
+
+    #[test]
+    fn clip_planes_lie_across_the_view_axis() {
+        // Mitsuba's rule: the planes are at depth near and far along the
+        // view axis, so an off-axis ray (angle θ) starts near / cos θ and
+        // ends far / cos θ along itself, for a pinhole and a thin lens.
+        let (near, far) = (1.5, 7.0);
+        let mut lens = camera();
+        lens.lens_radius = 0.3;
+        lens.focal_distance = 4.0;
+        for mut c in [camera(), lens] {
+            c.clip = Some(ClipRange { near, far });
+            for (film, u) in [
+                (Vec2::new(320.0, 240.0), Vec2::new(0.5, 0.5)),
+                (Vec2::new(0.0, 0.0), Vec2::new(0.1, 0.8)),
+                (Vec2::new(640.0, 130.0), Vec2::new(0.9, 0.3)),
+            ] {
+                let r = c.generate_ray(film, u);
+                let start = c.lens_point(&r);
+                let cos = r.dir.dot(c.forward);
+                let depth = |p: Vec3| (p - c.eye).dot(c.forward);
+                assert!(depth(start).abs() < 1e-5, "starts from the lens plane");
+                assert!(((r.origin - start).length() - near / cos).abs() < 1e-4);
+                assert!((depth(r.origin) - near).abs() < 1e-4);
+                assert!((depth(r.at(r.t_max)) - far).abs() < 1e-3);
+                assert!((r.t_max - (far - near) / cos).abs() < 1e-3);
+                if film.x == 0.0 {
+                    assert!(cos < 0.85, "the corner ray is off axis ({cos})");
+                }
+                // The same ray without clipping leaves the same lens point.
+                let mut open = c.clone();
+                open.clip = None;
+                let o = open.generate_ray(film, u);
+                assert!((o.origin - start).length() < 1e-5);
+                assert!((o.dir - r.dir).length() < 1e-6);
+            }
+        }
+    }
+
+    #[test]
+    fn the_clip_range_bounds_connections_to_the_camera() {
+        let mut c = camera();
+        c.clip = Some(ClipRange {
+            near: 2.0,
+            far: 4.0,
+        });
+        // The camera at z = 5 looks down -z: depth 5 - z.
+        assert!(!c.in_clip_range(Vec3::new(0.0, 0.0, 4.0)));
+        assert!(c.in_clip_range(Vec3::new(0.3, 0.0, 2.0)));
+        assert!(!c.in_clip_range(Vec3::new(0.0, 0.0, 0.5)));
+        assert!(c.sample_wi(Vec3::new(0.0, 0.0, 4.0), Vec2::ZERO).is_none());
+        assert!(c.sample_wi(Vec3::new(0.0, 0.0, 2.0), Vec2::ZERO).is_some());
     }
 
     #[test]

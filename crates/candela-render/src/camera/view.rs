@@ -68,6 +68,7 @@ impl Camera {
             lens_radius: self.lens_radius,
             orthographic: self.orthographic,
             filter: self.filter.clone(),
+            clip: self.clip,
             ..placed
         })
     }

@@ -110,6 +110,7 @@ fn environment() -> EnvironmentLight {
     let opts = EnvironmentOptions {
         scale: 1.0,
         rotate_y_deg: 30.0,
+        ..Default::default()
     };
     EnvironmentLight {
         map: Arc::new(EnvironmentMap::from_image(&env_image(), &opts).unwrap()),

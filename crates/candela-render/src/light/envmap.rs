@@ -18,19 +18,24 @@
 //! handed) turns the map in the world; a scale multiplies its radiance.
 //!
 //! # Radiance and sampling
-//! Each pixel is constant radiance over its patch of the sphere (a box
-//! lookup, no interpolation): the emitted radiance and the sampling density
-//! then share one piecewise-constant structure, so wherever light arrives
-//! the density is positive, and light sampling alone stays unbiased.
-//! Directions are drawn from a 2-D piecewise-constant distribution
-//! ([`Distribution2D`]) over the pixels with weights luminance × the row's
-//! mean `sin θ` (the Jacobian of the mapping), and
-//! `p(ω) = p(u, v) / (2π² sin θ)` (pbrt-v3's `InfiniteAreaLight`).
+//! How radiance between pixel centres is read is the description's choice
+//! ([`EnvironmentLookup`]). `Nearest`: each pixel is constant radiance
+//! over its patch of the sphere, and directions are drawn from a 2-D
+//! piecewise-constant distribution ([`Distribution2D`]) over the pixels
+//! with weights luminance × the row's mean `sin θ` (the Jacobian of the
+//! mapping), `p(ω) = p(u, v) / (2π² sin θ)` (pbrt-v3's
+//! `InfiniteAreaLight`). The two bilinear lookups sample a bilinear
+//! density on the same vertex grid as the radiance
+//! (`envmap_bilinear.rs`). Either way radiance and density share one
+//! structure, so wherever light arrives the density is positive, and light
+//! sampling alone stays unbiased.
 
+use super::envmap_bilinear::BilinearGrid;
 use super::{luminance, LightSample};
 use crate::sampling::piecewise::Distribution2D;
 use crate::texture::{read_linear_image, TextureError};
 use candela_image::RgbImage;
+pub use candela_scene::EnvironmentLookup;
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::PI;
 use std::path::Path;
@@ -44,6 +49,8 @@ pub struct EnvironmentOptions {
     /// Rotation of the map about world +Y, in degrees (right-handed: a
     /// positive angle turns the map's −Z column toward −X).
     pub rotate_y_deg: f32,
+    /// How radiance between pixel centres is read (nearest by default).
+    pub lookup: EnvironmentLookup,
 }
 
 impl Default for EnvironmentOptions {
@@ -51,6 +58,7 @@ impl Default for EnvironmentOptions {
         Self {
             scale: 1.0,
             rotate_y_deg: 0.0,
+            lookup: EnvironmentLookup::Nearest,
         }
     }
 }
@@ -63,6 +71,8 @@ pub struct EnvironmentMap {
     /// Scaled linear radiance, row-major, row 0 at the zenith.
     pixels: Vec<Vec3>,
     distribution: Distribution2D,
+    /// The vertex grid of a bilinear lookup; `None` reads pixels nearest.
+    bilinear: Option<BilinearGrid>,
     /// World direction to map direction, and back.
     to_map: Mat3,
     to_world: Mat3,
@@ -98,29 +108,28 @@ impl EnvironmentMap {
                 c * scale
             })
             .collect();
-        let mut weights = Vec::with_capacity(pixels.len());
-        let mut luminance_integral = 0.0f64;
-        let d_phi = 2.0 * std::f64::consts::PI / width as f64;
-        for row in 0..height {
-            let (cos0, cos1) = row_cosines(row, height);
-            // Mean of sin θ over the row: its solid angle per unit θ.
-            let d_theta = std::f64::consts::PI / height as f64;
-            let mean_sin = (cos0 - cos1) / d_theta;
-            for p in &pixels[row * width..(row + 1) * width] {
-                let y = f64::from(luminance(*p));
-                weights.push((y * mean_sin) as f32);
-                luminance_integral += y * d_phi * (cos0 - cos1);
-            }
-        }
         let rotation = Mat3::from_rotation_y(opts.rotate_y_deg.to_radians());
+        let (distribution, bilinear, luminance_integral) = match opts.lookup {
+            EnvironmentLookup::Nearest => {
+                let (distribution, integral) = pixel_distribution(&pixels, width, height);
+                (distribution, None, integral)
+            }
+            lookup => {
+                let grid = BilinearGrid::new(&pixels, width, height, lookup);
+                let integral = grid.luminance_integral();
+                // Unused: the grid samples itself.
+                (Distribution2D::new(&[], 1), Some(grid), integral)
+            }
+        };
         Ok(Self {
             width,
             height,
             pixels,
-            distribution: Distribution2D::new(&weights, width),
+            distribution,
+            bilinear,
             to_map: rotation.transpose(),
             to_world: rotation,
-            luminance_integral: luminance_integral as f32,
+            luminance_integral,
         })
     }
 
@@ -135,7 +144,7 @@ impl EnvironmentMap {
     }
 
     /// ∫ luminance(L(ω)) dω over the whole sphere (exact for the
-    /// piecewise-constant map).
+    /// piecewise-constant map, each cell's corner mean for a bilinear one).
     pub fn luminance_integral(&self) -> f32 {
         self.luminance_integral
     }
@@ -164,6 +173,9 @@ impl EnvironmentMap {
     /// scene, toward the sky).
     pub fn le(&self, w: Vec3) -> Vec3 {
         let uv = self.direction_to_uv(w);
+        if let Some(grid) = &self.bilinear {
+            return grid.radiance(uv);
+        }
         let col = ((uv.x * self.width as f32) as usize).min(self.width - 1);
         let row = ((uv.y * self.height as f32) as usize).min(self.height - 1);
         self.pixels[row * self.width + col]
@@ -177,17 +189,28 @@ impl EnvironmentMap {
         if sin_theta <= 0.0 {
             return 0.0;
         }
-        self.distribution.pdf(self.direction_to_uv(w)) / (2.0 * PI * PI * sin_theta)
+        let uv = self.direction_to_uv(w);
+        let pdf_uv = match &self.bilinear {
+            Some(grid) => grid.pdf(uv),
+            None => self.distribution.pdf(uv),
+        };
+        pdf_uv / (2.0 * PI * PI * sin_theta)
     }
 
     /// Draws a direction in proportion to luminance. The density reported
     /// is [`EnvironmentMap::pdf`] of the direction returned, so the two
     /// agree to the last bit.
     pub fn sample(&self, u: Vec2) -> Option<LightSample> {
-        let (uv, pdf_uv) = self.distribution.sample(u);
-        if pdf_uv <= 0.0 {
-            return None;
-        }
+        let uv = match &self.bilinear {
+            Some(grid) => grid.sample(u)?,
+            None => {
+                let (uv, pdf_uv) = self.distribution.sample(u);
+                if pdf_uv <= 0.0 {
+                    return None;
+                }
+                uv
+            }
+        };
         let wi = self.uv_to_direction(uv);
         let pdf = self.pdf(wi);
         (pdf > 0.0).then(|| LightSample {
@@ -197,6 +220,29 @@ impl EnvironmentMap {
             pdf,
         })
     }
+}
+
+/// The piecewise-constant sampling distribution of a nearest lookup
+/// (weights luminance × the row's mean `sin θ`) and ∫ luminance dω.
+fn pixel_distribution(pixels: &[Vec3], width: usize, height: usize) -> (Distribution2D, f32) {
+    let mut weights = Vec::with_capacity(pixels.len());
+    let mut luminance_integral = 0.0f64;
+    let d_phi = 2.0 * std::f64::consts::PI / width as f64;
+    for row in 0..height {
+        let (cos0, cos1) = row_cosines(row, height);
+        // Mean of sin θ over the row: its solid angle per unit θ.
+        let d_theta = std::f64::consts::PI / height as f64;
+        let mean_sin = (cos0 - cos1) / d_theta;
+        for p in &pixels[row * width..(row + 1) * width] {
+            let y = f64::from(luminance(*p));
+            weights.push((y * mean_sin) as f32);
+            luminance_integral += y * d_phi * (cos0 - cos1);
+        }
+    }
+    (
+        Distribution2D::new(&weights, width),
+        luminance_integral as f32,
+    )
 }
 
 /// cos θ at the top and bottom edges of image row `row` of `height`.

@@ -153,6 +153,7 @@ fn rotated_environment_sampling_matches_its_pdf() {
         map(EnvironmentOptions {
             rotate_y_deg: 37.0,
             scale: 0.5,
+            ..Default::default()
         }),
     );
 }

@@ -37,6 +37,9 @@ mod emission;
 #[cfg(test)]
 mod emission_tests;
 mod envmap;
+mod envmap_bilinear;
+#[cfg(test)]
+mod envmap_bilinear_tests;
 #[cfg(test)]
 mod envmap_tests;
 mod infinite;
@@ -53,7 +56,7 @@ use area::LampSize;
 pub use area::{AreaLight, AreaShape, TexturedEmission};
 pub use delta::{DirectionalLight, PointLight, SpotFade, SpotLight};
 pub use emission::{LightEmission, SceneSphere};
-pub use envmap::{EnvironmentLight, EnvironmentMap, EnvironmentOptions};
+pub use envmap::{EnvironmentLight, EnvironmentLookup, EnvironmentMap, EnvironmentOptions};
 pub use infinite::AmbientLight;
 pub use select::{LightSelection, LightSelector, AUTO_TREE_ABOVE, MIN_REUSED_SHARE};
 pub use set::LightSet;

@@ -255,9 +255,14 @@ fn desc_environment(desc: &SceneDesc) -> Result<Option<Arc<EnvironmentMap>>, Sce
     let bad = |e: &dyn std::fmt::Display| SceneError::Environment(e.to_string());
     let map = match &desc.environment {
         None => return Ok(None),
-        Some(EnvironmentDesc::Map { path, scale }) => {
+        Some(EnvironmentDesc::Map {
+            path,
+            scale,
+            lookup,
+        }) => {
             let options = EnvironmentOptions {
                 scale: *scale,
+                lookup: *lookup,
                 ..EnvironmentOptions::default()
             };
             EnvironmentMap::load(path, &options)

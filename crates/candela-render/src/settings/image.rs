@@ -5,7 +5,7 @@ use super::{check, SettingsError};
 use crate::camera::framing::CameraMode;
 use crate::camera::{Camera, CameraView, PixelFilter};
 use crate::film::PixelRect;
-use crate::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
+use crate::light::{EnvironmentLookup, EnvironmentMap, EnvironmentOptions, ProceduralSky};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -153,6 +153,9 @@ impl ImageSettings {
         let options = EnvironmentOptions {
             scale: self.env_scale,
             rotate_y_deg: self.env_rotate,
+            // `-e` is CS184's flag, and CS184's environment light reads
+            // its map bilinearly between pixel centres.
+            lookup: EnvironmentLookup::Bilinear,
         };
         let bad = |err: &dyn std::fmt::Display| {
             SettingsError::new(format!(

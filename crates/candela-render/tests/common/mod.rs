@@ -46,6 +46,7 @@ pub fn camera_at(eye: Vec3) -> CameraDesc {
         },
         znear: None,
         zfar: None,
+        clip: None,
         loc: SourceLoc::default(),
     }
 }

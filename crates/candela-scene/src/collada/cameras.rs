@@ -84,6 +84,11 @@ pub(crate) fn instance(ctx: &Ctx, b: &mut Builder, inst: XNode, m: Mat4) -> Resu
         },
         znear: get("znear")?.map(|(v, _)| v),
         zfar: get("zfar")?.map(|(v, _)| v),
+        // COLLADA requires znear/zfar for its rasterising viewers' depth
+        // buffer (exporters write 0.1/100 or 0.01/10000); the CS184 orbit
+        // moves the eye anyway, so planes measured from the file's eye
+        // would cut arbitrary slices. Not a request to clip.
+        clip: None,
         loc: ctx.loc(inst),
     });
     Ok(())

@@ -14,12 +14,32 @@ pub struct CameraDesc {
     pub world_from_camera: Mat4,
     /// How the camera projects the world onto its image.
     pub projection: Projection,
-    /// Near clip distance, if given.
+    /// The file's near plane, if given, as read (glTF, COLLADA: a
+    /// rasteriser's depth range, not applied; see [`CameraDesc::clip`]).
     pub znear: Option<f32>,
-    /// Far clip distance, if given.
+    /// The file's far plane, if given, as read (not applied either).
     pub zfar: Option<f32>,
+    /// The depth range the renderer keeps: what lies nearer than
+    /// `clip.near` or farther than `clip.far` is not seen by camera rays.
+    /// `None` (every format but Mitsuba's) sees everything.
+    pub clip: Option<ClipRange>,
     /// Where the camera was described.
     pub loc: SourceLoc,
+}
+
+/// Clip planes of a camera, as Mitsuba 3's `perspective` and `thinlens`
+/// sensors apply `near_clip` and `far_clip`: two planes perpendicular to
+/// the view axis at these distances in front of the eye (lens) plane. A
+/// camera ray whose angle to the view axis is θ therefore starts
+/// `near / cos θ` along itself and ends `far / cos θ` along itself; only
+/// camera rays are clipped, later bounces see the whole scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClipRange {
+    /// Distance of the near plane along the view axis (> 0).
+    pub near: f32,
+    /// Distance of the far plane along the view axis (> `near`; may be
+    /// infinite).
+    pub far: f32,
 }
 
 /// The camera models a description can ask for. A renderer keeps square

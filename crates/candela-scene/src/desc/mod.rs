@@ -24,7 +24,7 @@ mod smooth_normals;
 mod tangents;
 mod texture;
 
-pub use camera::{CameraDesc, Projection};
+pub use camera::{CameraDesc, ClipRange, Projection};
 pub use material::{
     Alpha, BsdfDesc, InternalReflectance, Masking, MaterialDesc, MicrofacetModel,
     PrincipledParameters, Sides, TextureSlot, TextureSlots,
@@ -81,12 +81,33 @@ pub enum EnvironmentDesc {
         path: PathBuf,
         /// Multiplies every pixel's radiance.
         scale: f32,
+        /// How radiance between pixel centres is read.
+        lookup: EnvironmentLookup,
     },
     /// The same radiance from every direction.
     Constant {
         /// Radiance per channel.
         radiance: Vec3,
     },
+}
+
+/// How an environment image is read between its pixel centres: each
+/// format's own renderer decides, and a loader says which it follows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EnvironmentLookup {
+    /// Each pixel is constant over its patch of the sphere (pbrt-v4's
+    /// image infinite light looks up the nearest texel; the renderer's own
+    /// built-in default).
+    #[default]
+    Nearest,
+    /// Bilinear between pixel centres `((i + ½)/W, (j + ½)/H)`, wrapping
+    /// across the `u = 0` seam and clamped within half a row of the poles
+    /// (CS184's `EnvironmentLight::bilerp`).
+    Bilinear,
+    /// Bilinear with columns at pixel centres (wrapping) but rows from pole
+    /// to pole: row `j` at `θ = π j/(H − 1)`, the first on the zenith and
+    /// the last on the nadir (Mitsuba 3's `envmap`).
+    BilinearPoleRows,
 }
 
 /// A triangle mesh. Attributes have their own index arrays (as COLLADA does),

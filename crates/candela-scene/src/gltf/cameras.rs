@@ -76,6 +76,10 @@ pub(super) fn read_camera(
         projection,
         znear: Some(znear),
         zfar,
+        // glTF's znear (required) and zfar are the planes of a
+        // rasteriser's projection matrix (depth precision; zfar absent
+        // means an infinite projection), not a request to hide geometry.
+        clip: None,
         loc: Default::default(),
     })
 }

@@ -10,7 +10,7 @@ use super::doc::{Doc, XNode};
 use super::transform::to_world;
 use super::values::{float, point};
 use super::Builder;
-use crate::desc::{EnvironmentDesc, LightDesc, LightKind, SpotEdge};
+use crate::desc::{EnvironmentDesc, EnvironmentLookup, LightDesc, LightKind, SpotEdge};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat4, Vec3};
 
@@ -95,7 +95,18 @@ pub(super) fn emitter(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Loa
                     "an environment map's to_world is not supported (ignored)",
                 )?;
             }
-            return set_environment(b, doc, node, EnvironmentDesc::Map { path, scale });
+            return set_environment(
+                b,
+                doc,
+                node,
+                EnvironmentDesc::Map {
+                    path,
+                    scale,
+                    // Mitsuba's envmap reads its bitmap bilinearly with
+                    // rows from pole to pole (its `eval_spectrum`).
+                    lookup: EnvironmentLookup::BilinearPoleRows,
+                },
+            );
         }
         "constant" => {
             let radiance = b.constant(doc, node, "radiance", Vec3::ONE)?;

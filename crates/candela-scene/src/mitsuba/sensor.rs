@@ -21,6 +21,13 @@
 //! `world_from_camera = to_world · diag(−1, 1, −1)`: a rotation, the image
 //! is not mirrored.
 //!
+//! # Clip planes
+//! `near_clip` (default 0.01) and `far_clip` (default 10⁴) become the
+//! camera's [`ClipRange`]: planes across the view axis, as Mitsuba's
+//! perspective and thin-lens sensors apply them to camera rays only (a
+//! ray at angle θ to the axis starts at `near / cos θ`, ends at
+//! `far / cos θ`).
+//!
 //! # Depth
 //! Mitsuba's `max_depth` counts path segments (1 = emitters seen directly);
 //! Candela's counts bounces (0 = emitters seen directly), so Candela's
@@ -31,7 +38,7 @@ use super::doc::{elements, Doc, XNode};
 use super::transform::to_world;
 use super::values::{float, integer, string};
 use super::Builder;
-use crate::desc::{CameraDesc, Projection};
+use crate::desc::{CameraDesc, ClipRange, Projection};
 use crate::error::{ErrorKind, LoadError};
 use crate::hints::FilterHint;
 use glam::{Mat4, Vec3};
@@ -147,6 +154,7 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
         projection,
         znear: Some(near),
         zfar: Some(far),
+        clip: Some(ClipRange { near, far }),
         loc: doc.loc(node),
     });
     Ok(())

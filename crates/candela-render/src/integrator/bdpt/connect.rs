@@ -129,7 +129,13 @@ pub(crate) fn connect_to_camera(
     if qs.on_surface() {
         l *= cs.wi.dot(qs.ns).abs();
     }
-    if l == Vec3::ZERO || !visible(scene, qs, &camera, ctx) {
+    // Behind clip planes the camera sees only what lies past the near
+    // plane: the shadow ray ends there, not at the lens.
+    let near_end = Vertex {
+        p: scene.camera.clipped(Ray::new(cs.p_lens, -cs.wi)).origin,
+        ..camera
+    };
+    if l == Vec3::ZERO || !visible(scene, qs, &near_end, ctx) {
         return None;
     }
     Some(Connection {

@@ -37,7 +37,8 @@ pub(crate) fn camera_subpath(
     let camera = &scene.camera;
     let mut v = Vertex::new(
         VertexKind::Camera,
-        ray.origin,
+        // The lens, also when clip planes moved the ray's start forward.
+        camera.lens_point(ray),
         Vec3::ZERO,
         camera.forward,
         Vec3::ONE,
