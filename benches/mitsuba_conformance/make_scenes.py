@@ -770,6 +770,19 @@ text += """    <emitter type="envmap">
 add("emit-envmap-direct", text, {"left sky": [0, 0, 20, 30], "right sky": [108, 0, 128, 30],
                                  "centre bottom sky": [54, 80, 74, 96]})
 
+# The same, the map turned by its to_world (a yaw and a tilt).
+add("emit-envmap-rotated", text.replace(
+    "An environment map seen directly and in a mirror sphere (orientation).",
+    "An environment map turned by its to_world, seen directly and in a mirror sphere.").replace(
+    """        <string name="filename" value="textures/env.exr"/>
+    </emitter>""", """        <string name="filename" value="textures/env.exr"/>
+        <transform name="to_world">
+            <rotate y="1" angle="70"/>
+            <rotate x="1" angle="25"/>
+        </transform>
+    </emitter>"""), {"left sky": [0, 0, 20, 30], "right sky": [108, 0, 128, 30],
+                     "centre bottom sky": [54, 80, 74, 96]})
+
 emitter_scene("emit-area", "Area emitters on a sphere and on a rectangle (one-sided, facing down-forward).", """    <shape type="sphere" id="lamp_sphere">
         <point name="center" x="-0.6" y="0.5" z="0"/>
         <float name="radius" value="0.15"/>

@@ -844,3 +844,57 @@ fn sensors_carry_their_clip_range_and_envmaps_mitsubas_lookup() {
         other => panic!("{other:?}"),
     }
 }
+
+/// The scene of one environment map with `transform` as its `to_world`.
+fn envmap_with(name: &str, transform: &str) -> Loaded {
+    let dir = candela_testkit::TempDir::new(name);
+    std::fs::write(dir.join("sky.exr"), b"not read by the loader").unwrap();
+    let path = dir.join("env.xml");
+    std::fs::write(
+        &path,
+        format!(
+            r#"<scene version="3.0.0"><emitter type="envmap">
+            <string name="filename" value="sky.exr"/>
+            <transform name="to_world">{transform}</transform></emitter></scene>"#
+        ),
+    )
+    .unwrap();
+    load(&path, &LoadOptions::default()).unwrap()
+}
+
+fn env_to_world(l: &Loaded) -> glam::Mat3 {
+    match &l.scene.environment {
+        Some(EnvironmentDesc::Map { to_world, .. }) => *to_world,
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn an_envmaps_to_world_turns_it_and_only_its_rotation_is_kept() {
+    // A yaw then a tilt, a uniform scale and a translation: the rotation is
+    // kept exactly, the rest changes no direction and is dropped silently.
+    let l = envmap_with(
+        "mitsuba-env-rotate",
+        r#"<scale value="3"/><rotate y="1" angle="70"/><rotate x="1" angle="25"/>
+           <translate x="5"/>"#,
+    );
+    let want = glam::Mat3::from_rotation_x(25f32.to_radians())
+        * glam::Mat3::from_rotation_y(70f32.to_radians());
+    let got = env_to_world(&l);
+    assert!(
+        (got - want).to_cols_array().iter().all(|e| e.abs() < 1e-5),
+        "{got} against {want}"
+    );
+    assert!(l.report.is_empty(), "{}", l.report);
+    // An uneven scale is reported once and its rotation (none here) kept.
+    let l = envmap_with("mitsuba-env-squash", r#"<scale x="1" y="2" z="1"/>"#);
+    assert!(l.report.mentions("to_world"), "{}", l.report);
+    let got = env_to_world(&l);
+    assert!(
+        (got - glam::Mat3::IDENTITY)
+            .to_cols_array()
+            .iter()
+            .all(|e| e.abs() < 1e-6),
+        "{got}"
+    );
+}

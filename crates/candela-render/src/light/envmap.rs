@@ -51,6 +51,9 @@ pub struct EnvironmentOptions {
     pub rotate_y_deg: f32,
     /// How radiance between pixel centres is read (nearest by default).
     pub lookup: EnvironmentLookup,
+    /// The map's own orientation in the world (the scene's `to_world`, a
+    /// rotation), applied before [`EnvironmentOptions::rotate_y_deg`].
+    pub to_world: Mat3,
 }
 
 impl Default for EnvironmentOptions {
@@ -59,6 +62,7 @@ impl Default for EnvironmentOptions {
             scale: 1.0,
             rotate_y_deg: 0.0,
             lookup: EnvironmentLookup::Nearest,
+            to_world: Mat3::IDENTITY,
         }
     }
 }
@@ -108,7 +112,7 @@ impl EnvironmentMap {
                 c * scale
             })
             .collect();
-        let rotation = Mat3::from_rotation_y(opts.rotate_y_deg.to_radians());
+        let rotation = Mat3::from_rotation_y(opts.rotate_y_deg.to_radians()) * opts.to_world;
         let (distribution, bilinear, luminance_integral) = match opts.lookup {
             EnvironmentLookup::Nearest => {
                 let (distribution, integral) = pixel_distribution(&pixels, width, height);

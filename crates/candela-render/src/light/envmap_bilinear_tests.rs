@@ -130,6 +130,9 @@ fn bilinear_sampling_matches_its_pdf() {
             lookup,
             rotate_y_deg: 23.0,
             scale: 1.5,
+            // A tilt as a scene's `to_world` gives: samples and their pdf
+            // must follow it as they follow the yaw.
+            to_world: glam::Mat3::from_rotation_x(0.4),
         };
         let map = EnvironmentMap::from_image(&edgy_image(), &opts).unwrap();
         let light = Light::Environment(EnvironmentLight { map: Arc::new(map) });

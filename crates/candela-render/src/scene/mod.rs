@@ -259,10 +259,12 @@ fn desc_environment(desc: &SceneDesc) -> Result<Option<Arc<EnvironmentMap>>, Sce
             path,
             scale,
             lookup,
+            to_world,
         }) => {
             let options = EnvironmentOptions {
                 scale: *scale,
                 lookup: *lookup,
+                to_world: *to_world,
                 ..EnvironmentOptions::default()
             };
             EnvironmentMap::load(path, &options)

@@ -156,6 +156,7 @@ impl ImageSettings {
             // `-e` is CS184's flag, and CS184's environment light reads
             // its map bilinearly between pixel centres.
             lookup: EnvironmentLookup::Bilinear,
+            ..EnvironmentOptions::default()
         };
         let bad = |err: &dyn std::fmt::Display| {
             SettingsError::new(format!(

@@ -83,6 +83,10 @@ pub enum EnvironmentDesc {
         scale: f32,
         /// How radiance between pixel centres is read.
         lookup: EnvironmentLookup,
+        /// The map's orientation in the world: a rotation taking the map's
+        /// own frame (+Y its zenith) to world directions (Mitsuba's
+        /// `to_world`); the identity for formats that have none.
+        to_world: Mat3,
     },
     /// The same radiance from every direction.
     Constant {

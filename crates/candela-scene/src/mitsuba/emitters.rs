@@ -12,7 +12,7 @@ use super::values::{float, point};
 use super::Builder;
 use crate::desc::{EnvironmentDesc, EnvironmentLookup, LightDesc, LightKind, SpotEdge};
 use crate::error::{ErrorKind, LoadError};
-use glam::{Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec3};
 
 /// The radiance of a shape's `<emitter type="area">`.
 pub(super) fn area_radiance(b: &mut Builder, doc: &Doc, node: XNode) -> Result<Vec3, LoadError> {
@@ -88,13 +88,18 @@ pub(super) fn emitter(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Loa
         "envmap" => {
             let path = b.existing_file(doc, node)?;
             let scale = float(doc, node, "scale", 1.0)?;
-            if m != Mat4::IDENTITY {
-                b.warn(
-                    doc,
-                    node,
-                    "an environment map's to_world is not supported (ignored)",
-                )?;
-            }
+            let to_world = match rotation_of(m) {
+                Some(r) => r,
+                None => {
+                    b.warn(
+                        doc,
+                        node,
+                        "an environment map's to_world with a shear, a mirror or an uneven \
+                         scale: only its rotation is used",
+                    )?;
+                    nearest_rotation(m)
+                }
+            };
             return set_environment(
                 b,
                 doc,
@@ -105,6 +110,7 @@ pub(super) fn emitter(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Loa
                     // Mitsuba's envmap reads its bitmap bilinearly with
                     // rows from pole to pole (its `eval_spectrum`).
                     lookup: EnvironmentLookup::BilinearPoleRows,
+                    to_world,
                 },
             );
         }
@@ -160,4 +166,33 @@ fn set_environment(
     }
     b.scene.environment = Some(env);
     Ok(())
+}
+
+/// The rotation of an environment map's `to_world`: its linear part when
+/// that is a rotation times a uniform scale (directions are normalised, so
+/// the scale and any translation change nothing), else `None`.
+fn rotation_of(m: Mat4) -> Option<Mat3> {
+    let a = Mat3::from_mat4(m);
+    let scale = a.x_axis.length();
+    if !(scale > 0.0 && scale.is_finite()) {
+        return None;
+    }
+    let r = a * (1.0 / scale);
+    let off = (r.transpose() * r - Mat3::IDENTITY).to_cols_array();
+    let orthonormal = off.iter().all(|e| e.abs() < 1e-4);
+    (orthonormal && r.determinant() > 0.0).then_some(r)
+}
+
+/// A rotation near `m`'s linear part (its axes made orthonormal, x first,
+/// then y), for a `to_world` that is not a rotation; the identity if even
+/// that fails.
+fn nearest_rotation(m: Mat4) -> Mat3 {
+    let a = Mat3::from_mat4(m);
+    let Some(x) = a.x_axis.try_normalize() else {
+        return Mat3::IDENTITY;
+    };
+    let Some(z) = x.cross(a.y_axis).try_normalize() else {
+        return Mat3::IDENTITY;
+    };
+    Mat3::from_cols(x, z.cross(x), z)
 }
