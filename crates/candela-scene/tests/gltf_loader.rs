@@ -374,3 +374,50 @@ fn the_projects_textured_scene_loads_with_flipped_uvs_and_every_slot() {
     );
     assert!(l.report.warnings.is_empty(), "{}", l.report);
 }
+
+#[test]
+fn khr_texture_transform_places_every_texture_as_the_extension_says() {
+    // The extension reads a texture at T(offset) R(rotation) S(scale) uv in
+    // glTF's uv (v down): u' = c sx u + s sy v + ox, v' = -s sx u + c sy v
+    // + oy. Candela's uv has v up, so its transform must map the flipped
+    // point to the flipped result.
+    let png = gltf::data_uri(b"\x89PNG not really");
+    let (offset, rotation, scale) = ([0.25f32, 0.5f32], 0.3f32, [2.0f32, 3.0f32]);
+    let transform = json!({"offset": offset, "rotation": rotation, "scale": scale});
+    let text = gltf_text(|d| {
+        d["extensionsUsed"] = json!(["KHR_texture_transform"]);
+        d["images"] = json!([{"uri": png.replace("application/octet-stream", "image/png")}]);
+        d["textures"] = json!([{"source": 0}]);
+        d["materials"] = json!([{
+            "pbrMetallicRoughness": {
+                "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": transform}},
+                "metallicRoughnessTexture": {"index": 0}},
+            "normalTexture": {"index": 0, "extensions": {"KHR_texture_transform": transform}}
+        }]);
+    });
+    let l = load_ok(&write("texture-transform.gltf", &text));
+    assert!(!l.report.mentions("KHR_texture_transform"), "{}", l.report);
+    let t = &l.scene.materials[0].textures;
+    let (s, c) = rotation.sin_cos();
+    let gltf_map = |u: f32, v: f32| {
+        (
+            c * scale[0] * u + s * scale[1] * v + offset[0],
+            -s * scale[0] * u + c * scale[1] * v + offset[1],
+        )
+    };
+    for slot in [TextureSlot::Color, TextureSlot::Normal] {
+        let uv = t.get(slot).expect("textured").uv;
+        for (u, v) in [(0.0, 0.0), (1.0, 0.0), (0.3, 0.7), (-0.4, 1.2)] {
+            let (tu, tv) = gltf_map(u, v);
+            let got = uv.apply(glam::Vec2::new(u, 1.0 - v));
+            let want = glam::Vec2::new(tu, 1.0 - tv);
+            assert!(
+                (got - want).length() < 1e-5,
+                "{slot:?} at ({u}, {v}): {got} against {want}"
+            );
+        }
+    }
+    // A reference without the extension reads at the surface's own uv.
+    let plain = t.get(TextureSlot::Roughness).expect("roughness").uv;
+    assert!(plain.is_identity());
+}

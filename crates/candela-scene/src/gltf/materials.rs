@@ -22,9 +22,9 @@
 use super::accessors::Buffers;
 use super::textures::texture_ref;
 use super::Ctx;
-use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, Sides, TextureSlot};
+use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, Sides, TextureSlot, UvTransform};
 use crate::error::LoadError;
-use glam::Vec3;
+use glam::{Affine2, Vec2, Vec3};
 use gltf::material::AlphaMode;
 
 /// Reads material `m` with its textures.
@@ -83,17 +83,18 @@ pub(super) fn read_material(
         loc: Default::default(),
     };
     let mut slot = |slot: TextureSlot,
-                    info: Option<(gltf::Texture, u32)>,
+                    info: Option<TexInfo>,
                     space: ColorSpace,
                     scale: f32,
                     channel: Option<u8>|
      -> Result<(), LoadError> {
-        let Some((tex, coord)) = info else {
+        let Some((tex, coord, uv)) = info else {
             return Ok(());
         };
         if let Some(mut t) = texture_ref(ctx, buffers, &tex, coord, space)? {
             t.scale = scale;
             t.channel = channel;
+            t.uv = uv;
             desc.textures.set(slot, t);
         }
         Ok(())
@@ -127,7 +128,10 @@ pub(super) fn read_material(
     )?;
     let normal = m.normal_texture();
     let scale = normal.as_ref().map_or(1.0, |n| n.scale());
-    let normal = normal.map(|n| (n.texture(), n.tex_coord()));
+    let normal = normal.map(|n| {
+        let (coord, uv) = normal_transform(&n, n.tex_coord());
+        (n.texture(), coord, uv)
+    });
     slot(TextureSlot::Normal, normal, ColorSpace::Linear, scale, None)?;
     let emissive_tex = info(m.emissive_texture());
     if emissive_tex.is_some() {
@@ -162,9 +166,68 @@ pub(super) fn read_material(
     Ok(desc)
 }
 
-/// A texture reference's texture and UV set.
-fn info(i: Option<gltf::texture::Info<'_>>) -> Option<(gltf::Texture<'_>, u32)> {
-    i.map(|i| (i.texture(), i.tex_coord()))
+/// A texture reference's texture, UV set and uv transform.
+type TexInfo<'a> = (gltf::Texture<'a>, u32, UvTransform);
+
+/// A texture reference's texture, its UV set (`KHR_texture_transform`'s
+/// `texCoord` overrides the reference's) and its uv transform.
+fn info(i: Option<gltf::texture::Info<'_>>) -> Option<TexInfo<'_>> {
+    i.map(|i| {
+        let t = i.texture_transform();
+        let coord = t
+            .as_ref()
+            .and_then(|t| t.tex_coord())
+            .unwrap_or(i.tex_coord());
+        let uv = t.map_or(UvTransform::IDENTITY, |t| {
+            khr_texture_transform(t.offset(), t.rotation(), t.scale())
+        });
+        (i.texture(), coord, uv)
+    })
+}
+
+/// A normal texture's UV set and uv transform: the parser types
+/// `KHR_texture_transform` only on plain texture references, so a normal
+/// texture's is read from its extension object (missing fields take the
+/// extension's defaults).
+fn normal_transform(n: &gltf::material::NormalTexture<'_>, coord: u32) -> (u32, UvTransform) {
+    let Some(t) = n.extensions().and_then(|e| e.get("KHR_texture_transform")) else {
+        return (coord, UvTransform::IDENTITY);
+    };
+    let pair = |key: &str, default: [f32; 2]| -> [f32; 2] {
+        t.get(key)
+            .and_then(|v| v.as_array())
+            .filter(|a| a.len() == 2)
+            .and_then(|a| Some([a[0].as_f64()? as f32, a[1].as_f64()? as f32]))
+            .unwrap_or(default)
+    };
+    let rotation = t.get("rotation").and_then(|v| v.as_f64()).unwrap_or(0.0) as f32;
+    let coord = t
+        .get("texCoord")
+        .and_then(|v| v.as_u64())
+        .map_or(coord, |c| c as u32);
+    (
+        coord,
+        khr_texture_transform(
+            pair("offset", [0.0, 0.0]),
+            rotation,
+            pair("scale", [1.0, 1.0]),
+        ),
+    )
+}
+
+/// `KHR_texture_transform` in Candela's uv. The extension reads the texture
+/// at T(offset)·R(rotation)·S(scale)·uv, with R = [[cos, sin], [−sin, cos]]
+/// (rows), in glTF's uv, whose v runs down the image; Candela's v runs up
+/// (v = 1 − v_glTF, `meshes.rs`), so the map is F·M·F with F(u, v) = (u, 1 − v).
+fn khr_texture_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> UvTransform {
+    let (s, c) = rotation.sin_cos();
+    let gltf = Affine2::from_cols(
+        Vec2::new(c, -s) * scale[0],
+        Vec2::new(s, c) * scale[1],
+        Vec2::from(offset),
+    );
+    let flip = Affine2::from_cols(Vec2::X, -Vec2::Y, Vec2::Y);
+    UvTransform(flip * gltf * flip)
 }
 
 /// The one number a texture slot's scale can hold for a colour factor: the
