@@ -393,10 +393,26 @@ fn khr_texture_transform_places_every_texture_as_the_extension_says() {
                 "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": transform}},
                 "metallicRoughnessTexture": {"index": 0}},
             "normalTexture": {"index": 0, "extensions": {"KHR_texture_transform": transform}}
+        }, {
+            "normalTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"rotation": "a lot"}}}
         }]);
+        let mut second = d["meshes"][0]["primitives"][0].clone();
+        second["material"] = json!(1);
+        d["meshes"][0]["primitives"]
+            .as_array_mut()
+            .unwrap()
+            .push(second);
     });
     let l = load_ok(&write("texture-transform.gltf", &text));
-    assert!(!l.report.mentions("KHR_texture_transform"), "{}", l.report);
+    // Only the second material's malformed transform is reported.
+    assert_eq!(l.report.len(), 1, "{}", l.report);
+    assert!(l.report.mentions("KHR_texture_transform"), "{}", l.report);
+    assert!(l.scene.materials[1]
+        .textures
+        .get(TextureSlot::Normal)
+        .expect("normal")
+        .uv
+        .is_identity());
     let t = &l.scene.materials[0].textures;
     let (s, c) = rotation.sin_cos();
     let gltf_map = |u: f32, v: f32| {

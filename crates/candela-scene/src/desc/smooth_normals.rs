@@ -11,9 +11,8 @@ impl MeshDesc {
     /// "Computing Vertex Normals from Polygonal Facets", the rule Mitsuba
     /// uses): unlike area or plain averages, the result does not change when
     /// a polygon around the vertex is triangulated differently. A vertex
-    /// whose triangles are all degenerate keeps a normal of its first
-    /// non-degenerate neighbour's side or, failing that, +Z. Does nothing
-    /// if the mesh already has normals.
+    /// whose triangles are all degenerate gets +Z (Mitsuba picks an
+    /// arbitrary axis too). Does nothing if the mesh already has normals.
     pub fn set_angle_weighted_normals(&mut self) {
         if !self.normals.is_empty() {
             return;

@@ -128,10 +128,13 @@ pub(super) fn read_material(
     )?;
     let normal = m.normal_texture();
     let scale = normal.as_ref().map_or(1.0, |n| n.scale());
-    let normal = normal.map(|n| {
-        let (coord, uv) = normal_transform(&n, n.tex_coord());
-        (n.texture(), coord, uv)
-    });
+    let normal = match normal {
+        Some(n) => {
+            let (coord, uv) = normal_transform(ctx, &n)?;
+            Some((n.texture(), coord, uv))
+        }
+        None => None,
+    };
     slot(TextureSlot::Normal, normal, ColorSpace::Linear, scale, None)?;
     let emissive_tex = info(m.emissive_texture());
     if emissive_tex.is_some() {
@@ -185,34 +188,32 @@ fn info(i: Option<gltf::texture::Info<'_>>) -> Option<TexInfo<'_>> {
     })
 }
 
-/// A normal texture's UV set and uv transform: the parser types
+/// A normal texture's UV set and uv transform. The parser types
 /// `KHR_texture_transform` only on plain texture references, so a normal
-/// texture's is read from its extension object (missing fields take the
-/// extension's defaults).
-fn normal_transform(n: &gltf::material::NormalTexture<'_>, coord: u32) -> (u32, UvTransform) {
-    let Some(t) = n.extensions().and_then(|e| e.get("KHR_texture_transform")) else {
-        return (coord, UvTransform::IDENTITY);
+/// texture's extension object is read here through the parser's own type
+/// (its defaults included); a malformed one is reported and not applied.
+fn normal_transform(
+    ctx: &Ctx,
+    n: &gltf::material::NormalTexture<'_>,
+) -> Result<(u32, UvTransform), LoadError> {
+    let coord = n.tex_coord();
+    let Some(value) = n.extensions().and_then(|e| e.get("KHR_texture_transform")) else {
+        return Ok((coord, UvTransform::IDENTITY));
     };
-    let pair = |key: &str, default: [f32; 2]| -> [f32; 2] {
-        t.get(key)
-            .and_then(|v| v.as_array())
-            .filter(|a| a.len() == 2)
-            .and_then(|a| Some([a[0].as_f64()? as f32, a[1].as_f64()? as f32]))
-            .unwrap_or(default)
-    };
-    let rotation = t.get("rotation").and_then(|v| v.as_f64()).unwrap_or(0.0) as f32;
-    let coord = t
-        .get("texCoord")
-        .and_then(|v| v.as_u64())
-        .map_or(coord, |c| c as u32);
-    (
-        coord,
-        khr_texture_transform(
-            pair("offset", [0.0, 0.0]),
-            rotation,
-            pair("scale", [1.0, 1.0]),
-        ),
-    )
+    type Transform = gltf::json::extensions::texture::TextureTransform;
+    match gltf::json::deserialize::from_value::<Transform>(value.clone()) {
+        Ok(t) => Ok((
+            t.tex_coord.unwrap_or(coord),
+            khr_texture_transform(t.offset.0, t.rotation.0, t.scale.0),
+        )),
+        Err(e) => {
+            ctx.warn(
+                "KHR_texture_transform",
+                &format!("a normal texture's transform is malformed ({e}); not applied"),
+            )?;
+            Ok((coord, UvTransform::IDENTITY))
+        }
+    }
 }
 
 /// `KHR_texture_transform` in Candela's uv. The extension reads the texture

@@ -269,45 +269,34 @@ impl Reader<'_> {
         }
     }
 
-    /// `count` reals, read in bounded chunks so that memory grows only with
-    /// data actually present.
+    /// `count` reals (`f64` narrowed to `f32` when `double`).
     fn reals(&mut self, count: usize, double: bool) -> Result<Vec<f32>, String> {
-        let size = if double { 8 } else { 4 };
-        let mut out = Vec::with_capacity(count.min(1 << 20));
-        let mut chunk = vec![0u8; 1 << 16];
-        let mut left = count;
-        while left > 0 {
-            let n = left.min(chunk.len() / size);
-            let buf = &mut chunk[..n * size];
-            self.exact(buf)?;
-            if double {
-                out.extend(
-                    buf.chunks_exact(8)
-                        .map(|b| f64::from_le_bytes(b.try_into().unwrap()) as f32),
-                );
-            } else {
-                out.extend(
-                    buf.chunks_exact(4)
-                        .map(|b| f32::from_le_bytes(b.try_into().unwrap())),
-                );
-            }
-            left -= n;
+        if double {
+            self.values(count, |b: &[u8; 8]| f64::from_le_bytes(*b) as f32)
+        } else {
+            self.values(count, |b: &[u8; 4]| f32::from_le_bytes(*b))
         }
-        Ok(out)
     }
 
     fn u32s(&mut self, count: usize) -> Result<Vec<u32>, String> {
+        self.values(count, |b: &[u8; 4]| u32::from_le_bytes(*b))
+    }
+
+    /// `count` little-endian values of `N` bytes each, read in bounded
+    /// chunks so that memory grows only with data actually present.
+    fn values<const N: usize, T>(
+        &mut self,
+        count: usize,
+        decode: impl Fn(&[u8; N]) -> T,
+    ) -> Result<Vec<T>, String> {
         let mut out = Vec::with_capacity(count.min(1 << 20));
         let mut chunk = vec![0u8; 1 << 16];
         let mut left = count;
         while left > 0 {
-            let n = left.min(chunk.len() / 4);
-            let buf = &mut chunk[..n * 4];
+            let n = left.min(chunk.len() / N);
+            let buf = &mut chunk[..n * N];
             self.exact(buf)?;
-            out.extend(
-                buf.chunks_exact(4)
-                    .map(|b| u32::from_le_bytes(b.try_into().unwrap())),
-            );
+            out.extend(buf.chunks_exact(N).map(|b| decode(b.try_into().unwrap())));
             left -= n;
         }
         Ok(out)
