@@ -78,10 +78,15 @@ fn one_line(err: &anyhow::Error) -> String {
     line
 }
 
-/// Bad input exits with 2, anything else with 1.
+/// Bad input exits with 2, anything else with 1. A scene that loads but
+/// cannot be built (a camera that cannot be placed, an unreadable
+/// environment map, inconsistent geometry) is bad input too: every
+/// [`candela_render::scene::SceneError`] comes from the description.
 fn exit_code(err: &anyhow::Error) -> u8 {
     let bad_input = err.chain().any(|cause| {
-        cause.is::<candela_scene::LoadError>() || cause.is::<render_cmd::UsageError>()
+        cause.is::<candela_scene::LoadError>()
+            || cause.is::<render_cmd::UsageError>()
+            || cause.is::<candela_render::scene::SceneError>()
     });
     if bad_input {
         2

@@ -72,8 +72,14 @@ pub struct Loaded {
 ///
 /// Files over 512 MiB are refused before they are read, so a wrong path to a
 /// huge file fails fast.
+///
+/// Every format's scene then passes the same extent check
+/// ([`SceneDesc::check_extent`]): geometry and cameras beyond
+/// [`MAX_COORDINATE`] are refused with their place in the file.
 pub fn load(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
-    (formats::format_of(path)?.load)(path, opts)
+    let loaded = (formats::format_of(path)?.load)(path, opts)?;
+    loaded.scene.check_extent()?;
+    Ok(loaded)
 }
 
 /// The extensions [`load`] accepts, with their formats, for messages and
@@ -85,7 +91,9 @@ pub fn supported_formats() -> String {
 /// Loads COLLADA text. `source` names the file in messages and is the base
 /// for relative texture paths.
 pub fn load_str(text: &str, source: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
-    collada::load_str(text, source, opts)
+    let loaded = collada::load_str(text, source, opts)?;
+    loaded.scene.check_extent()?;
+    Ok(loaded)
 }
 
 /// The built-in demo scene (`scenes/demo.dae`: a Cornell box with a diffuse

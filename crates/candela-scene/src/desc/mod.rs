@@ -18,6 +18,7 @@
 //!   ([`texture`]); cameras carry their own projection ([`camera`]).
 
 mod camera;
+mod extent;
 mod material;
 mod perturbation;
 mod smooth_normals;
@@ -25,6 +26,7 @@ mod tangents;
 mod texture;
 
 pub use camera::{CameraDesc, ClipRange, Projection};
+pub use extent::MAX_COORDINATE;
 pub use material::{
     Alpha, BsdfDesc, InternalReflectance, Masking, MaterialDesc, MicrofacetModel,
     PrincipledParameters, Sides, TextureSlot, TextureSlots,
