@@ -255,6 +255,34 @@ fn positions_of_the_wrong_type() {
     });
 }
 
+/// The document with its material's base colour read from image 0, as
+/// `image` describes it (found by mutating the shipped scene: the `gltf`
+/// crate panicked on an image without a `uri`).
+fn textured(d: &mut serde_json::Value, image: serde_json::Value) {
+    d["images"] = json!([image]);
+    d["textures"] = json!([{"source": 0}]);
+    d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});
+}
+
+#[test]
+fn image_without_a_source() {
+    case("no-uri.gltf", ErrorKind::MissingElement, "/images/0", |d| {
+        textured(d, json!({"name": "albedo"}));
+    });
+}
+
+#[test]
+fn image_in_a_buffer_view_without_a_mime_type() {
+    case(
+        "no-mime.gltf",
+        ErrorKind::MissingElement,
+        "/images/0",
+        |d| {
+            textured(d, json!({"bufferView": 0}));
+        },
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 1000, failure_persistence: None, ..ProptestConfig::default() })]
 

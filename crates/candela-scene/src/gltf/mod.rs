@@ -122,6 +122,7 @@ pub(crate) fn load_bytes(
             )
         })?;
     check_position_indices(&ctx, &root)?;
+    check_image_sources(&ctx, &root)?;
     let doc = gltf::Document::from_json(root).map_err(|e| validation_error(&ctx, e))?;
     report_unsupported(&ctx, &doc)?;
     let buffers = buffers::read_all(&ctx, &doc, bin)?;
@@ -158,6 +159,26 @@ fn check_position_indices(ctx: &Ctx, root: &gltf::json::Root) -> Result<(), Load
                 ));
             }
         }
+    }
+    Ok(())
+}
+
+/// Refuses an image without a source before the `gltf` crate reads it:
+/// its `Image::source` unwraps the `uri` of an image without a
+/// `bufferView`, and the `mimeType` of one with (the specification
+/// requires both; its validation checks neither).
+fn check_image_sources(ctx: &Ctx, root: &gltf::json::Root) -> Result<(), LoadError> {
+    for (i, image) in root.images.iter().enumerate() {
+        let missing = match (&image.buffer_view, &image.uri, &image.mime_type) {
+            (Some(_), _, None) => "an image in a bufferView needs a mimeType",
+            (None, None, _) => "an image needs a uri or a bufferView",
+            _ => continue,
+        };
+        return Err(ctx.err(
+            format!("/images/{i}"),
+            ErrorKind::MissingElement,
+            missing.to_string(),
+        ));
     }
     Ok(())
 }
