@@ -176,6 +176,7 @@ fn hash_mesh(h: &mut ContentHasher, mesh: &MeshDesc) {
         tangents,
         uvs,
         uv_indices,
+        colors,
         material,
         loc: _,
     } = mesh;
@@ -187,6 +188,7 @@ fn hash_mesh(h: &mut ContentHasher, mesh: &MeshDesc) {
     h.write(&bytes_of(tangents));
     h.write(&bytes_of(uvs));
     h.write(&bytes_of(uv_indices));
+    h.write(&bytes_of(colors));
     h.write(&(*material as u64).to_le_bytes());
 }
 

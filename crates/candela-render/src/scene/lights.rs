@@ -3,6 +3,7 @@
 
 use super::{Geometry, SceneNames};
 use crate::light::TexturedEmission;
+use crate::texture::TexturePoint;
 use crate::light::{
     AmbientLight, AreaLight, AreaShape, DirectionalLight, EnvironmentLight, EnvironmentMap, Light,
     LightSet, PointLight, SpotFade, SpotLight,
@@ -48,6 +49,13 @@ pub fn build_lights(
         let textured = shared[material].as_ref().map(|textures| TexturedEmission {
             textures: textures.clone(),
             uvs: corner_uvs(geometry, prim),
+            colors: match prim.kind() {
+                PrimKind::Triangle => {
+                    let tris = &geometry.triangles;
+                    tris.corner_colors(tris.triangles[prim.index() as usize])
+                }
+                PrimKind::Sphere => [TexturePoint::NO_VERTEX_COLOR; 3],
+            },
             sphere_axes: match prim.kind() {
                 PrimKind::Sphere => geometry.spheres[prim.index() as usize].axes,
                 PrimKind::Triangle => SphereDesc::Y_POLE,

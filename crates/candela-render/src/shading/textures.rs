@@ -1,6 +1,7 @@
 //! A material's texture slots at a hit: every parameter the description can
 //! texture (colour, roughness, metalness, normal map, emission, opacity) is
-//! read at the hit's `uv` and put into the BSDF it belongs to.
+//! read at the hit (its `uv` and vertex colour, a [`TexturePoint`]) and
+//! put into the BSDF it belongs to.
 //!
 //! What each slot drives, per BSDF:
 //!
@@ -20,9 +21,9 @@
 //! pure emitter) is returned as unsupported, by name.
 
 use crate::bsdf::{Bsdf, Masking, MicrofacetDistribution};
-use crate::texture::{SlotTexture, TextureCache};
+use crate::texture::{SlotTexture, TextureCache, TexturePoint};
 use candela_scene::{PerturbationRules, TextureSlot, TextureSlots};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// The channel one-value slots read when the description names none.
 const DEFAULT_CHANNEL: u8 = 0;
@@ -102,11 +103,12 @@ impl MaterialTextures {
         self.color.is_some() || self.roughness.is_some() || self.metalness.is_some()
     }
 
-    /// `bsdf` with its textured parameters read at `uv`.
-    pub fn apply(&self, bsdf: Bsdf, uv: Vec2) -> Bsdf {
+    /// `bsdf` with its textured parameters read at `at`.
+    pub fn apply(&self, bsdf: Bsdf, at: impl Into<TexturePoint>) -> Bsdf {
         if !self.textures_bsdf() {
             return bsdf;
         }
+        let uv = at.into();
         let color = self
             .color
             .as_ref()
@@ -216,15 +218,17 @@ impl MaterialTextures {
         }
     }
 
-    /// The textured emission at `uv`, if the emission slot is filled.
-    pub fn emission(&self, uv: Vec2) -> Option<Vec3> {
-        self.emission.as_ref().map(|t| t.color(uv).max(Vec3::ZERO))
+    /// The textured emission at `at`, if the emission slot is filled.
+    pub fn emission(&self, at: impl Into<TexturePoint>) -> Option<Vec3> {
+        let at = at.into();
+        self.emission.as_ref().map(|t| t.color(at).max(Vec3::ZERO))
     }
 
-    /// The opacity at `uv` in [0, 1]: the texture's value, else the
+    /// The opacity at `at` in [0, 1]: the texture's value, else the
     /// constant, else 1; with a cutoff, 1 where the value reaches it and 0
     /// below.
-    pub fn opacity(&self, uv: Vec2) -> f32 {
+    pub fn opacity(&self, at: impl Into<TexturePoint>) -> f32 {
+        let uv = at.into();
         let value = match (&self.opacity, self.opacity_constant) {
             (Some(t), _) => {
                 let channel = if t.has_alpha() {
