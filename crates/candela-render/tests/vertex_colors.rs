@@ -11,8 +11,7 @@ use candela_render::bsdf::Bsdf;
 use candela_render::geometry::Ray;
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{
-    BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, SceneDesc, SourceLoc, TextureRef,
-    TextureSource,
+    BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, SceneDesc, SourceLoc, TextureRef, TextureSource,
 };
 use candela_testkit::SplitMix64;
 use glam::{Mat4, Quat, Vec2, Vec3};

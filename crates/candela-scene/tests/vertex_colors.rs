@@ -81,7 +81,10 @@ fn ply_float_colours_are_linear_and_integers_decoded_from_srgb() {
 
     let bytes = load_file(
         "uchar.ply",
-        &ply("uchar", &["0 0 0 255 0 128", "1 0 0 10 64 200", "0 1 0 1 2 3"]),
+        &ply(
+            "uchar",
+            &["0 0 0 255 0 128", "1 0 0 10 64 200", "0 1 0 1 2 3"],
+        ),
     );
     let decode = |c: [u32; 3], max: f32| Vec3::from(c.map(|v| srgb_to_linear(v as f32 / max)));
     assert_close(
@@ -95,7 +98,10 @@ fn ply_float_colours_are_linear_and_integers_decoded_from_srgb() {
     );
     let shorts = load_file(
         "ushort.ply",
-        &ply("ushort", &["0 0 0 65535 0 1000", "1 0 0 30000 7 0", "0 1 0 1 2 3"]),
+        &ply(
+            "ushort",
+            &["0 0 0 65535 0 1000", "1 0 0 30000 7 0", "0 1 0 1 2 3"],
+        ),
     );
     assert_close(
         &shorts.scene.meshes[0].colors,
@@ -136,7 +142,10 @@ fn obj_vertex_colours_are_read_as_given_and_dropped_when_partial() {
     let positions = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)];
     assert_eq!(mesh.colors.len(), mesh.positions.len());
     for (p, c) in mesh.positions.iter().zip(&mesh.colors) {
-        let k = positions.iter().position(|q| q == p).expect("a file vertex");
+        let k = positions
+            .iter()
+            .position(|q| q == p)
+            .expect("a file vertex");
         assert_eq!(*c, by_vertex[k], "vertex at {p}");
     }
     let t = color_texture(&l.scene.materials[mesh.material]);
@@ -158,7 +167,8 @@ fn gltf_with_colors(bytes: &[u8], component_type: u32, ty: &str, factor: [f32; 4
         d["buffers"] = json!([{"uri": gltf::data_uri(&buf), "byteLength": buf.len()}]);
         let views = d["bufferViews"].as_array_mut().unwrap();
         views.push(json!({"buffer": 0, "byteOffset": 44, "byteLength": bytes.len()}));
-        let mut acc = json!({"bufferView": 2, "componentType": component_type, "count": 3, "type": ty});
+        let mut acc =
+            json!({"bufferView": 2, "componentType": component_type, "count": 3, "type": ty});
         if component_type != 5126 {
             acc["normalized"] = json!(true);
         }
@@ -192,9 +202,14 @@ fn gltf_color_0_reads_floats_and_normalised_integers() {
     assert!(report.contains("COLOR_0 alpha"), "{report}");
 
     // Normalised unsigned shorts: c / 65535.
-    let shorts: [u16; 12] = [65535, 0, 1, 65535, 300, 40000, 65535, 65535, 0, 9, 65534, 65535];
+    let shorts: [u16; 12] = [
+        65535, 0, 1, 65535, 300, 40000, 65535, 65535, 0, 9, 65534, 65535,
+    ];
     let bytes: Vec<u8> = shorts.iter().flat_map(|v| v.to_le_bytes()).collect();
-    let l = load_file("u16.gltf", &gltf_with_colors(&bytes, 5123, "VEC4", [1.0; 4]));
+    let l = load_file(
+        "u16.gltf",
+        &gltf_with_colors(&bytes, 5123, "VEC4", [1.0; 4]),
+    );
     let want: Vec<Vec3> = shorts
         .chunks(4)
         .map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32) / 65535.0)
@@ -221,9 +236,13 @@ fn gltf_vertex_colours_multiply_the_base_colour() {
     // With a base colour texture: the texture times the vertex colour,
     // with the factor its scale. A primitive of the same material without
     // COLOR_0 keeps the plain texture.
-    let mut doc: serde_json::Value =
-        serde_json::from_slice(&gltf_with_colors(&bytes, 5126, "VEC3", [0.5, 0.5, 0.5, 1.0]))
-            .unwrap();
+    let mut doc: serde_json::Value = serde_json::from_slice(&gltf_with_colors(
+        &bytes,
+        5126,
+        "VEC3",
+        [0.5, 0.5, 0.5, 1.0],
+    ))
+    .unwrap();
     doc["images"] = json!([{"uri": "base.png"}]);
     doc["textures"] = json!([{"source": 0}]);
     doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": 0});

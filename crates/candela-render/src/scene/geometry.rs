@@ -389,8 +389,7 @@ impl TriangleData {
 fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
     let wo = -ray.dir.normalize();
     let i = hit.prim.index() as usize;
-    let (p, p_error, ng_raw, ns_raw, uv, tangent, vertex_color, material) = match hit.prim.kind()
-    {
+    let (p, p_error, ng_raw, ns_raw, uv, tangent, vertex_color, material) = match hit.prim.kind() {
         PrimKind::Triangle => {
             let tris = &geometry.triangles;
             let [v0, v1, v2] = tris.corners(i);
@@ -418,7 +417,16 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
                 b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
             };
             let vertex_color = tris.color_at(tris.triangles[i], b);
-            (p, p_error, ng, ns, uv, tangent, vertex_color, tris.material[i])
+            (
+                p,
+                p_error,
+                ng,
+                ns,
+                uv,
+                tangent,
+                vertex_color,
+                tris.material[i],
+            )
         }
         PrimKind::Sphere => {
             let s = &geometry.spheres[i];

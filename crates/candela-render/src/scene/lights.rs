@@ -3,7 +3,6 @@
 
 use super::{Geometry, SceneNames};
 use crate::light::TexturedEmission;
-use crate::texture::TexturePoint;
 use crate::light::{
     AmbientLight, AreaLight, AreaShape, DirectionalLight, EnvironmentLight, EnvironmentMap, Light,
     LightSet, PointLight, SpotFade, SpotLight,
@@ -12,6 +11,7 @@ use crate::material::Material;
 use crate::sampling::warp::Parallelogram;
 use crate::shading::MaterialTextures;
 use crate::shape::{PrimKind, PrimRef};
+use crate::texture::TexturePoint;
 use candela_scene::{LightKind, SceneDesc, SphereDesc, SpotEdge};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
