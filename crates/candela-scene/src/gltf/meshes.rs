@@ -12,14 +12,13 @@ use crate::error::{ErrorKind, LoadError};
 use gltf::mesh::{Mode, Semantic};
 
 /// Reads primitive `prim` of mesh `mesh`; `None` (after a warning) for a
-/// primitive that draws no triangles. `material` is the scene's index of
-/// its material.
+/// primitive that draws no triangles. Its material is left for the caller
+/// to set: which copy it gets depends on the vertex colours read here.
 pub(super) fn read_primitive(
     ctx: &Ctx,
     buffers: &Buffers,
     mesh: &gltf::Mesh,
     prim: &gltf::Primitive,
-    material: usize,
 ) -> Result<Option<MeshDesc>, LoadError> {
     let at = format!("/meshes/{}/primitives/{}", mesh.index(), prim.index());
     if prim.mode() != Mode::Triangles {
@@ -80,7 +79,6 @@ pub(super) fn read_primitive(
     };
     let mut desc = MeshDesc {
         name: mesh.name().unwrap_or("mesh").to_string(),
-        material,
         ..MeshDesc::default()
     };
     if let Some(acc) = attribute(&Semantic::Normals)? {

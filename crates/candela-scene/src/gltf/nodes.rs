@@ -152,7 +152,7 @@ fn mesh_of(
     if let Some(&known) = walk.meshes.get(&key) {
         return Ok(known);
     }
-    let index = match meshes::read_primitive(ctx, walk.buffers, mesh, prim, 0)? {
+    let index = match meshes::read_primitive(ctx, walk.buffers, mesh, prim)? {
         Some(mut desc) => {
             desc.material = material_of(ctx, walk, &prim.material(), !desc.colors.is_empty())?;
             walk.scene.meshes.push(desc);

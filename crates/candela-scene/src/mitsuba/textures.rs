@@ -4,7 +4,7 @@
 //! |---|---|
 //! | `bitmap` | an image [`TextureRef`]: `raw` (linear) or the file's colour space, `filter_type` (`bilinear`, `nearest`), `to_uv`; `wrap_mode` other than `repeat` is reported (read as repeat) |
 //! | `checkerboard` | [`TextureSource::Checkerboard`] of `color0`/`color1` (constants; textures in them are reported), `to_uv` |
-//! | `mesh_attribute` | `name` `vertex_color`: [`TextureSource::VertexColor`] (the PLY's `red green blue`, white on a mesh without them), `scale`; other attributes are reported, grey 0.5 |
+//! | `mesh_attribute` | `name` `vertex_color`: [`TextureSource::VertexColor`] (a PLY's `red green blue`, a `serialized` mesh's colours; white on a mesh without them), `scale`; other attributes are reported, grey 0.5 |
 //! | `volume` | reported, grey 0.5 |
 //!
 //! `to_uv` is a `<transform>` read as Mitsuba reads it: the 4×4 matrix of
