@@ -108,15 +108,15 @@ impl MaterialTextures {
         if !self.textures_bsdf() {
             return bsdf;
         }
-        let uv = at.into();
+        let at: TexturePoint = at.into();
         let color = self
             .color
             .as_ref()
-            .map(|t| t.color(uv).clamp(Vec3::ZERO, Vec3::ONE));
+            .map(|t| t.color(at).clamp(Vec3::ZERO, Vec3::ONE));
         let roughness = self
             .roughness
             .as_ref()
-            .map(|t| t.value(uv, DEFAULT_CHANNEL).max(0.0));
+            .map(|t| t.value(at, DEFAULT_CHANNEL).max(0.0));
         match bsdf {
             Bsdf::Diffuse { albedo } => Bsdf::Diffuse {
                 albedo: color.unwrap_or(albedo),
@@ -193,7 +193,7 @@ impl MaterialTextures {
                 let metallic = self
                     .metalness
                     .as_ref()
-                    .map_or(metallic, |t| t.value(uv, METALNESS_CHANNEL));
+                    .map_or(metallic, |t| t.value(at, METALNESS_CHANNEL));
                 Bsdf::MetallicRoughness(m.with(
                     color.unwrap_or(base),
                     metallic,
@@ -205,7 +205,7 @@ impl MaterialTextures {
                 let metallic = self
                     .metalness
                     .as_ref()
-                    .map_or(q.metallic, |t| t.value(uv, METALNESS_CHANNEL));
+                    .map_or(q.metallic, |t| t.value(at, METALNESS_CHANNEL));
                 Bsdf::Principled(p.with(
                     color.unwrap_or(q.base_color),
                     metallic,
@@ -228,7 +228,7 @@ impl MaterialTextures {
     /// constant, else 1; with a cutoff, 1 where the value reaches it and 0
     /// below.
     pub fn opacity(&self, at: impl Into<TexturePoint>) -> f32 {
-        let uv = at.into();
+        let at: TexturePoint = at.into();
         let value = match (&self.opacity, self.opacity_constant) {
             (Some(t), _) => {
                 let channel = if t.has_alpha() {
@@ -236,7 +236,7 @@ impl MaterialTextures {
                 } else {
                     DEFAULT_CHANNEL
                 };
-                t.value(uv, channel)
+                t.value(at, channel)
             }
             (None, Some(constant)) => constant,
             (None, None) => return 1.0,
