@@ -450,6 +450,101 @@ add("tex-maps", text, {
     "mask bitmap": tpanel_rect(xs[2]), "mask 0.5": tpanel_rect(xs[3]),
 })
 
+VERTEX_COLOR = """<texture type="mesh_attribute" name="{slot}">
+    <string name="name" value="vertex_color"/>{extra}
+</texture>"""
+
+
+def vertex_color_sphere_ply(n_theta=12, n_phi=24):
+    """A coarse UV sphere as an ASCII PLY with vertex normals and float
+    red/green/blue colours that vary with the normal (linear, as Mitsuba
+    reads float colours)."""
+    verts, faces = [], []
+    for i in range(n_theta + 1):
+        t = math.pi * i / n_theta
+        for j in range(n_phi):
+            p = 2 * math.pi * j / n_phi
+            n = (math.sin(t) * math.cos(p), math.cos(t), math.sin(t) * math.sin(p))
+            rgb = (0.5 + 0.4 * n[0], 0.5 + 0.4 * n[1], 0.5 - 0.4 * n[2])
+            verts.append(n + n + rgb)
+    for i in range(n_theta):
+        for j in range(n_phi):
+            a, b = i * n_phi + j, i * n_phi + (j + 1) % n_phi
+            c, d = a + n_phi, b + n_phi
+            if i > 0:
+                faces.append((a, b, c))
+            if i < n_theta - 1:
+                faces.append((b, d, c))
+    head = (f"ply\nformat ascii 1.0\nelement vertex {len(verts)}\n"
+            "property float x\nproperty float y\nproperty float z\n"
+            "property float nx\nproperty float ny\nproperty float nz\n"
+            "property float red\nproperty float green\nproperty float blue\n"
+            f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
+    body = "".join(" ".join(f"{c:.6f}" for c in v) + "\n" for v in verts)
+    body += "".join(f"3 {a} {b} {c}\n" for a, b, c in faces)
+    return head + body
+
+
+def vertex_color_quad_ply():
+    """A square of two triangles with a saturated colour at each corner."""
+    corners = [(-1, -1, 0, 0.9, 0.1, 0.1), (1, -1, 0, 0.1, 0.9, 0.1),
+               (1, 1, 0, 0.1, 0.1, 0.9), (-1, 1, 0, 0.9, 0.9, 0.1)]
+    head = ("ply\nformat ascii 1.0\nelement vertex 4\n"
+            "property float x\nproperty float y\nproperty float z\n"
+            "property float red\nproperty float green\nproperty float blue\n"
+            "element face 2\nproperty list uchar int vertex_indices\nend_header\n")
+    body = "".join(" ".join(f"{c:g}" for c in v) + "\n" for v in corners)
+    return head + body + "3 0 1 2\n3 0 2 3\n"
+
+
+def write_vertex_color_meshes(t):
+    (t / "sphere_colors.ply").write_text(vertex_color_sphere_ply())
+    (t / "quad_colors.ply").write_text(vertex_color_quad_ply())
+
+
+def vc_shape(id_, fname, transform, bsdf):
+    return f"""    <shape type="ply" id="{id_}">
+        <string name="filename" value="textures/{fname}"/>
+        <transform name="to_world">
+{ind(transform, 12)}
+        </transform>
+{ind(bsdf)}
+    </shape>
+"""
+
+
+def vc_sphere_transform(i, extra=""):
+    (x, y, z), r = SLOTS[i]
+    return f'{extra}<scale value="{r}"/>\n<translate x="{x}" y="{y}" z="{z}"/>'
+
+
+VC_DIFFUSE = ('<bsdf type="diffuse">\n'
+              + ind(VERTEX_COLOR.format(slot="reflectance", extra=""), 4) + "\n</bsdf>")
+VC_QUAD = ('<bsdf type="twosided"><bsdf type="diffuse">\n'
+           + ind(VERTEX_COLOR.format(slot="reflectance",
+                                     extra='\n    <float name="scale" value="0.8"/>'), 4)
+           + "\n</bsdf></bsdf>")
+# (Mitsuba's plastic and roughplastic need a texture's mean, which its
+# mesh_attribute lacks; principled does not.)
+VC_PRINCIPLED = ('<bsdf type="principled">\n'
+                 + ind(VERTEX_COLOR.format(slot="base_color", extra=""), 4)
+                 + '\n    <float name="roughness" value="0.4"/>\n</bsdf>')
+text = header("Vertex colours: PLY red/green/blue read by mesh_attribute vertex_color on a "
+              "diffuse sphere, a two-sided square (scale 0.8), a principled base_color, "
+              "and a turned, squashed sphere.") + cornell()
+VC_X = SLOTS[1][0][0]
+text += vc_shape("vc_sphere", "sphere_colors.ply", vc_sphere_transform(0), VC_DIFFUSE)
+text += vc_shape("vc_quad", "quad_colors.ply",
+                 f'<scale x="0.2" y="0.4"/>\n<translate x="{VC_X}" y="-0.35" z="0"/>', VC_QUAD)
+text += vc_shape("vc_principled", "sphere_colors.ply", vc_sphere_transform(2), VC_PRINCIPLED)
+text += vc_shape("vc_turned", "sphere_colors.ply",
+                 vc_sphere_transform(3, '<rotate y="1" angle="70"/>\n<scale x="1" y="0.7" z="1"/>\n'),
+                 VC_DIFFUSE)
+add("tex-vertex-color", text, {
+    "diffuse sphere": rect(*SLOTS[0]), "square, scale 0.8": tpanel_rect(VC_X),
+    "principled sphere": rect(*SLOTS[2]), "turned sphere": rect(*SLOTS[3], frac=0.35),
+})
+
 # --- Shapes -----------------------------------------------------------------
 
 BLUE = '<bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.4, 0.8"/></bsdf></bsdf>'
@@ -825,6 +920,7 @@ def main():
     write_textures()
     write_ply_sphere(HERE / "textures" / "sphere.ply")
     write_mesh_files(HERE / "textures")
+    write_vertex_color_meshes(HERE / "textures")
     for name, text in SCENES.items():
         (HERE / f"{name}.xml").write_text(text)
     (HERE / "regions.json").write_text(json.dumps(REGIONS, indent=1) + "\n")

@@ -14,9 +14,9 @@ use crate::bsdf::{
 };
 use crate::shading::MaterialTextures;
 use crate::shape::SurfaceHit;
-use crate::texture::TextureCache;
+use crate::texture::{TextureCache, TexturePoint};
 use candela_scene::{Alpha, BsdfDesc, MaterialDesc, MicrofacetModel, Sides};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// A material ready for shading.
 #[derive(Clone, Debug, PartialEq)]
@@ -228,14 +228,14 @@ impl Material {
         if !side.textures.textures_bsdf() {
             return Some(bsdf); // untextured: no call, no copy through `apply`
         }
-        Some(side.textures.apply(bsdf, hit.uv))
+        Some(side.textures.apply(bsdf, hit.texture_point()))
     }
 
-    /// The radiance emitted at texture coordinate `uv` (on the emitting
-    /// side): the emission texture's value there, else the constant.
-    pub fn emission_at(&self, uv: Vec2) -> Option<Vec3> {
+    /// The radiance emitted at a point (on the emitting side): the
+    /// emission texture's value there, else the constant.
+    pub fn emission_at(&self, at: impl Into<TexturePoint>) -> Option<Vec3> {
         self.emission?;
-        self.textures.emission(uv).or(self.emission)
+        self.textures.emission(at).or(self.emission)
     }
 }
 

@@ -18,6 +18,7 @@ fn hit_at(uv: Vec2) -> SurfaceHit {
         ng: Vec3::Z,
         ns: Vec3::Z,
         uv,
+        vertex_color: Vec3::ONE,
         tangent: None,
         material: 0,
         prim: PrimRef::triangle(0),

@@ -176,6 +176,7 @@ fn hash_mesh(h: &mut ContentHasher, mesh: &MeshDesc) {
         tangents,
         uvs,
         uv_indices,
+        colors,
         material,
         loc: _,
     } = mesh;
@@ -187,6 +188,11 @@ fn hash_mesh(h: &mut ContentHasher, mesh: &MeshDesc) {
     h.write(&bytes_of(tangents));
     h.write(&bytes_of(uvs));
     h.write(&bytes_of(uv_indices));
+    // Only when present: a scene without vertex colours keeps the hash it
+    // had before meshes could carry them, so its checkpoints still resume.
+    if !colors.is_empty() {
+        h.write(&bytes_of(colors));
+    }
     h.write(&(*material as u64).to_le_bytes());
 }
 
@@ -267,7 +273,22 @@ mod tests {
         desc.source = "elsewhere.dae".into();
         assert_eq!(before, scene_hash(&desc, None), "the path is not content");
         let mesh = desc.meshes.iter_mut().find(|m| !m.positions.is_empty());
-        mesh.expect("the demo has a mesh").positions[0].x += 1e-6;
-        assert_ne!(before, scene_hash(&desc, None));
+        let mesh = mesh.expect("the demo has a mesh");
+        mesh.positions[0].x += 1e-6;
+        let moved = scene_hash(&desc, None);
+        assert_ne!(before, moved);
+        // Vertex colours are content too; a changed one changes the hash.
+        let mesh = desc.meshes.iter_mut().find(|m| !m.positions.is_empty());
+        let mesh = mesh.expect("the demo has a mesh");
+        mesh.colors = vec![glam::Vec3::splat(0.5); mesh.positions.len()];
+        let colored = scene_hash(&desc, None);
+        assert_ne!(moved, colored);
+        desc.meshes
+            .iter_mut()
+            .find(|m| !m.colors.is_empty())
+            .unwrap()
+            .colors[0]
+            .y = 0.25;
+        assert_ne!(colored, scene_hash(&desc, None));
     }
 }

@@ -228,7 +228,7 @@ fn estimate_hemisphere<R: PathRecorder>(
         let le = match &found {
             Some(h) if h.front_face => scene
                 .material(h.material)
-                .emission_at(h.uv)
+                .emission_at(h.texture_point())
                 .unwrap_or(Vec3::ZERO),
             Some(_) => Vec3::ZERO,
             None => scene

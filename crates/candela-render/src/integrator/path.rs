@@ -115,7 +115,7 @@ pub fn path_radiance<R: PathRecorder>(
             bsdf
         });
         if settings.bounces.contains(&depth) && hit.front_face {
-            if let Some(le) = material.emission_at(hit.uv) {
+            if let Some(le) = material.emission_at(hit.texture_point()) {
                 let mis_weight = emitter_weight(scene, &selector, &ray, &hit, prev, settings);
                 let term = beta * le * mis_weight;
                 l += term;

@@ -27,6 +27,7 @@ use crate::sampling::warp::{
 };
 use crate::shading::MaterialTextures;
 use crate::shape::{gamma, sphere_uv_in, SurfacePoint};
+use crate::texture::TexturePoint;
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::PI;
 use std::sync::Arc;
@@ -77,6 +78,9 @@ pub struct TexturedEmission {
     /// A triangle's UVs at its three corners (the sphere's mapping is its
     /// own).
     pub uvs: [Vec2; 3],
+    /// A triangle's vertex colours at its corners (white without them and
+    /// on a sphere).
+    pub colors: [Vec3; 3],
     /// A sphere's parameterisation axes (`SphereDesc::axes`; unused for a
     /// triangle).
     pub sphere_axes: Mat3,
@@ -86,9 +90,19 @@ pub struct TexturedEmission {
 }
 
 impl TexturedEmission {
-    /// Emitted radiance times opacity at `uv`.
-    pub fn at(&self, uv: Vec2) -> Vec3 {
-        self.textures.emission(uv).unwrap_or(self.radiance) * self.textures.opacity(uv)
+    /// Emitted radiance times opacity at a point (a sphere's: its uv).
+    pub fn at(&self, at: impl Into<TexturePoint>) -> Vec3 {
+        let at = at.into();
+        self.textures.emission(at).unwrap_or(self.radiance) * self.textures.opacity(at)
+    }
+
+    /// [`TexturedEmission::at`] the point of corner weights `b` of a
+    /// triangle: its UVs and vertex colours interpolated as `surface_hit`
+    /// interpolates them.
+    pub fn at_corners(&self, b: [f32; 3]) -> Vec3 {
+        let uv = b[0] * self.uvs[0] + b[1] * self.uvs[1] + b[2] * self.uvs[2];
+        let color = b[0] * self.colors[0] + b[1] * self.colors[1] + b[2] * self.colors[2];
+        self.at(TexturePoint::new(uv, color))
     }
 }
 
@@ -184,7 +198,7 @@ impl AreaLight {
         let l = match (&self.shape, &self.textured) {
             (AreaShape::Triangle { v, normal }, Some(t)) => {
                 let b = barycentric(v, *normal, p + distance * wi);
-                t.at(b[0] * t.uvs[0] + b[1] * t.uvs[1] + b[2] * t.uvs[2])
+                t.at_corners(b)
             }
             _ => self.radiance,
         };
@@ -269,7 +283,7 @@ impl AreaLight {
         let b2 = 1.0 - b.x - b.y;
         let l = match &self.textured {
             // The corner weights of q, as `surface_hit` interpolates UVs.
-            Some(t) => t.at(b.x * t.uvs[0] + b.y * t.uvs[1] + b2 * t.uvs[2]),
+            Some(t) => t.at_corners([b.x, b.y, b2]),
             None => self.radiance,
         };
         let p = b.x * v[0] + b.y * v[1] + b2 * v[2];

@@ -79,6 +79,7 @@ fn striped_emission() -> TexturedEmission {
     TexturedEmission {
         textures: Arc::new(textures),
         uvs: [Vec2::ZERO, Vec2::X, Vec2::Y],
+        colors: [crate::texture::TexturePoint::NO_VERTEX_COLOR; 3],
         sphere_axes: candela_scene::SphereDesc::Y_POLE,
         radiance: Vec3::ONE,
     }
@@ -593,4 +594,60 @@ fn textured_triangle_light_samples_read_the_texture_where_they_land() {
         checked += 1;
     }
     assert_eq!(checked, 64);
+}
+
+/// A triangle lamp whose emission is its vertex colours: each light sample
+/// carries the colour interpolated at the point it landed on, Σ bₖ cₖ
+/// (the corner weights of that point, found from the point itself), as a
+/// hit there reads it.
+#[test]
+fn a_vertex_coloured_lamp_emits_its_interpolated_colour_where_sampled() {
+    let colors = [
+        Vec3::new(3.0, 0.5, 0.0),
+        Vec3::new(0.0, 2.0, 1.0),
+        Vec3::new(0.5, 0.0, 4.0),
+    ];
+    let textures = MaterialTextures {
+        emission: Some(SlotTexture {
+            source: crate::texture::SlotSource::VertexColor,
+            ..striped_emission().textures.emission.clone().unwrap()
+        }),
+        ..MaterialTextures::default()
+    };
+    let light = triangle(
+        Vec3::ONE,
+        Some(TexturedEmission {
+            textures: Arc::new(textures),
+            colors,
+            ..striped_emission()
+        }),
+    );
+    let v = triangle_corners();
+    let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
+    let p = Vec3::new(0.1, 0.2, 0.0);
+    let mut sampler = Sampler::new(SamplerKind::Independent, 0x7e57);
+    let mut checked = 0;
+    for i in 0..500 {
+        sampler.start_pixel_sample(0, 0, i);
+        let Some(s) = light.sample_li(p, sampler.next_2d()) else {
+            continue;
+        };
+        checked += 1;
+        let q = p + s.distance * s.wi;
+        let area = |a: Vec3, b: Vec3, c: Vec3| (b - a).cross(c - a).dot(n);
+        let total = area(v[0], v[1], v[2]);
+        let b = [
+            area(q, v[1], v[2]) / total,
+            area(v[0], q, v[2]) / total,
+            area(v[0], v[1], q) / total,
+        ];
+        let want = b[0] * colors[0] + b[1] * colors[1] + b[2] * colors[2];
+        assert!(
+            (s.l - want).abs().max_element() < 1e-4 * want.max_element(),
+            "at {b:?}: {} vs {want}",
+            s.l
+        );
+    }
+    // The lamp faces p: every sample lands.
+    assert_eq!(checked, 500);
 }

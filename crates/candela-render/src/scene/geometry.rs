@@ -12,6 +12,7 @@ use crate::accel::Hit;
 use crate::geometry::Ray;
 use crate::light::AreaShape;
 use crate::shape::{self, PrimKind, PrimRef, SurfaceHit};
+use crate::texture::TexturePoint;
 use candela_scene::{InstanceDesc, MeshDesc, SceneDesc, Sides, SphereDesc, TangentFrame};
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
@@ -36,6 +37,12 @@ pub struct TriangleData {
     pub uvs: Vec<Vec2>,
     /// UV indices per triangle; `u32::MAX` in the first slot means none.
     pub uv_indices: Vec<[u32; 3]>,
+    /// Per-vertex colours (linear RGB), indexed like `positions` by
+    /// `triangles`. Empty unless some mesh has colours, and shorter than
+    /// `positions` past the last mesh that has them: a vertex without one
+    /// reads white ([`TexturePoint::NO_VERTEX_COLOR`]), so scenes without
+    /// vertex colours store nothing.
+    pub colors: Vec<Vec3>,
     /// Material index per triangle.
     pub material: Vec<u32>,
     /// Unit geometric normal per triangle ([`shape::triangle_normal`] of its
@@ -84,6 +91,16 @@ pub enum GeometryError {
     /// An instance's transform is singular or not finite.
     #[error("instance {0} has a singular or non-finite transform")]
     BadTransform(usize),
+    /// A mesh's vertex colours are not one per position.
+    #[error("mesh {mesh} has {colors} vertex colours for {positions} positions")]
+    ColorCount {
+        /// The mesh.
+        mesh: usize,
+        /// How many colours it has.
+        colors: usize,
+        /// How many positions.
+        positions: usize,
+    },
     /// More primitives of one kind than a [`PrimRef`] can name.
     #[error("{count} {kind:?} primitives exceed the limit of {max}")]
     TooMany {
@@ -103,6 +120,15 @@ impl Geometry {
         // Tangents generated from the UVs, once per mesh, for meshes drawn
         // with a normal map that came without any.
         let mut generated: Vec<Option<Vec<Vec4>>> = vec![None; desc.meshes.len()];
+        for (i, mesh) in desc.meshes.iter().enumerate() {
+            if !mesh.colors.is_empty() && mesh.colors.len() != mesh.positions.len() {
+                return Err(GeometryError::ColorCount {
+                    mesh: i,
+                    colors: mesh.colors.len(),
+                    positions: mesh.positions.len(),
+                });
+            }
+        }
         for (i, inst) in desc.instances.iter().enumerate() {
             let mesh = desc
                 .meshes
@@ -224,6 +250,13 @@ impl TriangleData {
         let base_n = self.normals.len() as u32;
         let base_uv = self.uvs.len() as u32;
         let with_tangents = !tangents.is_empty() && tangents.len() == mesh.normals.len();
+        if !mesh.colors.is_empty() {
+            // Colours are a vertex's whatever the placement; the vertices
+            // before them (meshes without colours) read white.
+            self.colors
+                .resize(base_p as usize, TexturePoint::NO_VERTEX_COLOR);
+            self.colors.extend_from_slice(&mesh.colors);
+        }
         if with_tangents {
             self.tangents.resize(base_n as usize, Vec4::ZERO);
         }
@@ -312,6 +345,32 @@ impl TriangleData {
         Some(sum.truncate().extend(w))
     }
 
+    /// The vertex colour interpolated at barycentrics `b` of the triangle
+    /// of position indices `tri`: Σ bₖ cₖ, white where its vertices have
+    /// none.
+    #[inline]
+    pub fn color_at(&self, tri: [u32; 3], b: [f32; 3]) -> Vec3 {
+        if self.colors.is_empty() {
+            return TexturePoint::NO_VERTEX_COLOR;
+        }
+        self.corner_colors(tri)
+            .into_iter()
+            .zip(b)
+            .map(|(c, w)| c * w)
+            .sum()
+    }
+
+    /// The vertex colours at the corners of the triangle of position
+    /// indices `tri` (white where there are none).
+    pub fn corner_colors(&self, tri: [u32; 3]) -> [Vec3; 3] {
+        tri.map(|k| {
+            self.colors
+                .get(k as usize)
+                .copied()
+                .unwrap_or(TexturePoint::NO_VERTEX_COLOR)
+        })
+    }
+
     /// The unit normal on the side triangle `i` emits toward: its authored
     /// normals' side when it has them (the files' winding does not always
     /// agree with them), else its winding's.
@@ -330,7 +389,7 @@ impl TriangleData {
 fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
     let wo = -ray.dir.normalize();
     let i = hit.prim.index() as usize;
-    let (p, p_error, ng_raw, ns_raw, uv, tangent, material) = match hit.prim.kind() {
+    let (p, p_error, ng_raw, ns_raw, uv, tangent, vertex_color, material) = match hit.prim.kind() {
         PrimKind::Triangle => {
             let tris = &geometry.triangles;
             let [v0, v1, v2] = tris.corners(i);
@@ -357,7 +416,17 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
                 let t = ti.map(|k| tris.uvs[k as usize]);
                 b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
             };
-            (p, p_error, ng, ns, uv, tangent, tris.material[i])
+            let vertex_color = tris.color_at(tris.triangles[i], b);
+            (
+                p,
+                p_error,
+                ng,
+                ns,
+                uv,
+                tangent,
+                vertex_color,
+                tris.material[i],
+            )
         }
         PrimKind::Sphere => {
             let s = &geometry.spheres[i];
@@ -368,7 +437,8 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
             } else {
                 Vec2::from(shape::sphere_uv_in(s.axes, s.center, sp.p))
             };
-            (sp.p, sp.p_error, sp.n, sp.n, uv, None, s.material)
+            let white = TexturePoint::NO_VERTEX_COLOR;
+            (sp.p, sp.p_error, sp.n, sp.n, uv, None, white, s.material)
         }
     };
     // Emitters emit on the side their authored (shading) normals point to;
@@ -385,6 +455,7 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
         ng,
         ns: ns_raw,
         uv,
+        vertex_color,
         tangent,
         material,
         prim: hit.prim,

@@ -11,6 +11,7 @@ use crate::material::Material;
 use crate::sampling::warp::Parallelogram;
 use crate::shading::MaterialTextures;
 use crate::shape::{PrimKind, PrimRef};
+use crate::texture::TexturePoint;
 use candela_scene::{LightKind, SceneDesc, SphereDesc, SpotEdge};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
@@ -48,6 +49,13 @@ pub fn build_lights(
         let textured = shared[material].as_ref().map(|textures| TexturedEmission {
             textures: textures.clone(),
             uvs: corner_uvs(geometry, prim),
+            colors: match prim.kind() {
+                PrimKind::Triangle => {
+                    let tris = &geometry.triangles;
+                    tris.corner_colors(tris.triangles[prim.index() as usize])
+                }
+                PrimKind::Sphere => [TexturePoint::NO_VERTEX_COLOR; 3],
+            },
             sphere_axes: match prim.kind() {
                 PrimKind::Sphere => geometry.spheres[prim.index() as usize].axes,
                 PrimKind::Triangle => SphereDesc::Y_POLE,

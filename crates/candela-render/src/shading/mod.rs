@@ -106,10 +106,10 @@ fn perturbed_frame(scene: &Scene, hit: &SurfaceHit, material: &Material) -> Shad
     let mut n = hit.ns;
     if let Some(map) = &t.normal {
         let (tu, tv) = tangent_axes(rules.tangent_frame, hit, dpdu, dpdv);
-        n = normal_map::mapped_normal(n, tu, tv, map.rgb(hit.uv), map.scale);
+        n = normal_map::mapped_normal(n, tu, tv, map.rgb(hit.texture_point()), map.scale);
     }
     if let Some(bump) = &t.bump {
-        let slope = bump.gradient(hit.uv, BUMP_CHANNEL);
+        let slope = bump.gradient(hit.texture_point(), BUMP_CHANNEL);
         n = normal_map::bumped_normal(n, dpdu, dpdv, slope.x, slope.y);
     }
     if n == hit.ns {

@@ -25,7 +25,7 @@ pub fn passes_through(material: &Material, hit: &SurfaceHit, ray: &Ray) -> bool 
     if !material.textures.has_opacity() {
         return false;
     }
-    let a = material.textures.opacity(hit.uv);
+    let a = material.textures.opacity(hit.texture_point());
     if a >= 1.0 {
         return false;
     }

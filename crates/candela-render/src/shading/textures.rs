@@ -1,6 +1,7 @@
 //! A material's texture slots at a hit: every parameter the description can
 //! texture (colour, roughness, metalness, normal map, emission, opacity) is
-//! read at the hit's `uv` and put into the BSDF it belongs to.
+//! read at the hit (its `uv` and vertex colour, a [`TexturePoint`]) and
+//! put into the BSDF it belongs to.
 //!
 //! What each slot drives, per BSDF:
 //!
@@ -20,9 +21,9 @@
 //! pure emitter) is returned as unsupported, by name.
 
 use crate::bsdf::{Bsdf, Masking, MicrofacetDistribution};
-use crate::texture::{SlotTexture, TextureCache};
+use crate::texture::{SlotTexture, TextureCache, TexturePoint};
 use candela_scene::{PerturbationRules, TextureSlot, TextureSlots};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// The channel one-value slots read when the description names none.
 const DEFAULT_CHANNEL: u8 = 0;
@@ -102,19 +103,20 @@ impl MaterialTextures {
         self.color.is_some() || self.roughness.is_some() || self.metalness.is_some()
     }
 
-    /// `bsdf` with its textured parameters read at `uv`.
-    pub fn apply(&self, bsdf: Bsdf, uv: Vec2) -> Bsdf {
+    /// `bsdf` with its textured parameters read at `at`.
+    pub fn apply(&self, bsdf: Bsdf, at: impl Into<TexturePoint>) -> Bsdf {
         if !self.textures_bsdf() {
             return bsdf;
         }
+        let at: TexturePoint = at.into();
         let color = self
             .color
             .as_ref()
-            .map(|t| t.color(uv).clamp(Vec3::ZERO, Vec3::ONE));
+            .map(|t| t.color(at).clamp(Vec3::ZERO, Vec3::ONE));
         let roughness = self
             .roughness
             .as_ref()
-            .map(|t| t.value(uv, DEFAULT_CHANNEL).max(0.0));
+            .map(|t| t.value(at, DEFAULT_CHANNEL).max(0.0));
         match bsdf {
             Bsdf::Diffuse { albedo } => Bsdf::Diffuse {
                 albedo: color.unwrap_or(albedo),
@@ -191,7 +193,7 @@ impl MaterialTextures {
                 let metallic = self
                     .metalness
                     .as_ref()
-                    .map_or(metallic, |t| t.value(uv, METALNESS_CHANNEL));
+                    .map_or(metallic, |t| t.value(at, METALNESS_CHANNEL));
                 Bsdf::MetallicRoughness(m.with(
                     color.unwrap_or(base),
                     metallic,
@@ -203,7 +205,7 @@ impl MaterialTextures {
                 let metallic = self
                     .metalness
                     .as_ref()
-                    .map_or(q.metallic, |t| t.value(uv, METALNESS_CHANNEL));
+                    .map_or(q.metallic, |t| t.value(at, METALNESS_CHANNEL));
                 Bsdf::Principled(p.with(
                     color.unwrap_or(q.base_color),
                     metallic,
@@ -216,15 +218,17 @@ impl MaterialTextures {
         }
     }
 
-    /// The textured emission at `uv`, if the emission slot is filled.
-    pub fn emission(&self, uv: Vec2) -> Option<Vec3> {
-        self.emission.as_ref().map(|t| t.color(uv).max(Vec3::ZERO))
+    /// The textured emission at `at`, if the emission slot is filled.
+    pub fn emission(&self, at: impl Into<TexturePoint>) -> Option<Vec3> {
+        let at = at.into();
+        self.emission.as_ref().map(|t| t.color(at).max(Vec3::ZERO))
     }
 
-    /// The opacity at `uv` in [0, 1]: the texture's value, else the
+    /// The opacity at `at` in [0, 1]: the texture's value, else the
     /// constant, else 1; with a cutoff, 1 where the value reaches it and 0
     /// below.
-    pub fn opacity(&self, uv: Vec2) -> f32 {
+    pub fn opacity(&self, at: impl Into<TexturePoint>) -> f32 {
+        let at: TexturePoint = at.into();
         let value = match (&self.opacity, self.opacity_constant) {
             (Some(t), _) => {
                 let channel = if t.has_alpha() {
@@ -232,7 +236,7 @@ impl MaterialTextures {
                 } else {
                     DEFAULT_CHANNEL
                 };
-                t.value(uv, channel)
+                t.value(at, channel)
             }
             (None, Some(constant)) => constant,
             (None, None) => return 1.0,

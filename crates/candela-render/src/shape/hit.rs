@@ -3,6 +3,7 @@
 //! by materials and integrators, so it lives here, below both.
 
 use super::{offset_ray_origin, PrimRef};
+use crate::texture::TexturePoint;
 use glam::{Vec2, Vec3, Vec4};
 
 /// Everything the integrators need to know about a hit point.
@@ -20,6 +21,9 @@ pub struct SurfaceHit {
     pub ns: Vec3,
     /// Texture coordinates.
     pub uv: Vec2,
+    /// The mesh's vertex colour interpolated here (linear RGB); white
+    /// ([`TexturePoint::NO_VERTEX_COLOR`]) where it has none.
+    pub vertex_color: Vec3,
     /// The mesh's per-vertex tangent interpolated here (xyz not normalised,
     /// w = ±1 handedness), when the mesh has tangents; normal maps use it
     /// instead of the triangle's dp/du.
@@ -38,6 +42,12 @@ pub struct SurfaceHit {
 }
 
 impl SurfaceHit {
+    /// Where the hit's textures are read: its uv and vertex colour.
+    #[inline]
+    pub fn texture_point(&self) -> TexturePoint {
+        TexturePoint::new(self.uv, self.vertex_color)
+    }
+
     /// The shading normal flipped to the side the ray came from.
     pub fn ns_facing(&self) -> Vec3 {
         if self.front_face {

@@ -19,9 +19,11 @@
 //! linear RGB.
 
 mod cache;
+mod point;
 mod slot;
 
 pub use cache::TextureCache;
+pub use point::TexturePoint;
 pub use slot::{SlotSource, SlotTexture};
 
 use candela_image::{read_exr, read_png, read_png_stored, srgb_decode, ImageError, RgbImage};

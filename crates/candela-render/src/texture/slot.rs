@@ -5,9 +5,10 @@
 //! methods here, so each gets every source, the filter and the transform
 //! alike: the surface's uv is transformed first, then the source is read
 //! there (an image tiles the plane, so a transformed uv outside [0, 1)
-//! repeats it).
+//! repeats it). The vertex colour is read at the point's own colour, and
+//! a slot marked `times_vertex_color` multiplies whatever it reads by it.
 
-use super::{ImageTexture, TextureCache};
+use super::{ImageTexture, TextureCache, TexturePoint};
 use candela_scene::{TextureFilter, TextureRef, TextureSource, UvTransform};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
@@ -26,6 +27,9 @@ pub enum SlotSource {
         /// The colour of its neighbours.
         color1: Vec3,
     },
+    /// The mesh's vertex colour at the point
+    /// ([`TextureSource::VertexColor`]).
+    VertexColor,
 }
 
 /// A texture read for one material parameter.
@@ -42,6 +46,9 @@ pub struct SlotTexture {
     pub filter: TextureFilter,
     /// Applied to the surface's uv before the lookup.
     pub uv: UvTransform,
+    /// Whether every value read is multiplied by the point's vertex colour
+    /// (its channel, for a one-value read).
+    pub times_vertex_color: bool,
 }
 
 impl SlotTexture {
@@ -53,6 +60,7 @@ impl SlotTexture {
             channel: None,
             filter: TextureFilter::Bilinear,
             uv: UvTransform::IDENTITY,
+            times_vertex_color: false,
         }
     }
 
@@ -65,6 +73,7 @@ impl SlotTexture {
                 color0: *color0,
                 color1: *color1,
             },
+            TextureSource::VertexColor => SlotSource::VertexColor,
         };
         Some(Self {
             source,
@@ -72,6 +81,7 @@ impl SlotTexture {
             channel: t.channel,
             filter: t.filter,
             uv: t.uv,
+            times_vertex_color: t.times_vertex_color,
         })
     }
 
@@ -82,64 +92,83 @@ impl SlotTexture {
 
     /// The source's mean colour over one period, unscaled: the texture's
     /// average over any surface whose (transformed) uv covers whole
-    /// periods.
+    /// periods. Vertex colours are not known here: they count as white (a
+    /// light's power is then an estimate, not its value).
     pub fn mean(&self) -> Vec3 {
         match &self.source {
             SlotSource::Image(image) => image.mean(),
             SlotSource::Checkerboard { color0, color1 } => 0.5 * (*color0 + *color1),
+            SlotSource::VertexColor => TexturePoint::NO_VERTEX_COLOR,
         }
     }
 
-    /// The colour at surface coordinates `uv`, unscaled (a normal map's
-    /// encoded direction).
-    pub fn rgb(&self, uv: Vec2) -> Vec3 {
-        let st = self.uv.apply(uv);
+    /// The colour at a point (its uv, or its vertex colour), unscaled (a
+    /// normal map's encoded direction).
+    #[inline]
+    pub fn rgb(&self, at: impl Into<TexturePoint>) -> Vec3 {
+        let at = at.into();
+        let rgb = self.source_rgb(at);
+        if self.times_vertex_color {
+            rgb * at.vertex_color
+        } else {
+            rgb
+        }
+    }
+
+    /// [`SlotTexture::rgb`] before the vertex colour's product.
+    fn source_rgb(&self, at: TexturePoint) -> Vec3 {
+        let st = self.uv.apply(at.uv);
         match &self.source {
             SlotSource::Image(image) => match self.filter {
                 TextureFilter::Bilinear => image.lookup(st),
                 TextureFilter::Nearest => image.nearest(st),
             },
             SlotSource::Checkerboard { color0, color1 } => checker(st, *color0, *color1),
+            SlotSource::VertexColor => at.vertex_color,
         }
     }
 
-    /// The colour at `uv`, times the scale. A slot that names a channel
-    /// reads that channel as grey.
-    pub fn color(&self, uv: Vec2) -> Vec3 {
+    /// The colour at a point, times the scale. A slot that names a
+    /// channel reads that channel as grey.
+    pub fn color(&self, at: impl Into<TexturePoint>) -> Vec3 {
+        let at = at.into();
         match self.channel {
-            Some(c) => Vec3::splat(self.channel_at(uv, c) * self.scale),
-            None => self.rgb(uv) * self.scale,
+            Some(c) => Vec3::splat(self.channel_at(at, c) * self.scale),
+            None => self.rgb(at) * self.scale,
         }
     }
 
-    /// The value at `uv`, times the scale: the named channel, else
+    /// The value at a point, times the scale: the named channel, else
     /// `default_channel`.
-    pub fn value(&self, uv: Vec2, default_channel: u8) -> f32 {
-        self.channel_at(uv, self.channel.unwrap_or(default_channel)) * self.scale
+    pub fn value(&self, at: impl Into<TexturePoint>, default_channel: u8) -> f32 {
+        self.channel_at(at.into(), self.channel.unwrap_or(default_channel)) * self.scale
     }
 
     /// The gradient (∂/∂u, ∂/∂v in the surface's uv) of
     /// [`SlotTexture::value`] at `uv`: the bilinear interpolant's exact
     /// derivative, carried back through the uv transform (chain rule). A
     /// piecewise-constant source (nearest texels, a checkerboard) has
-    /// slope 0, as Mitsuba's is.
-    pub fn gradient(&self, uv: Vec2, default_channel: u8) -> Vec2 {
+    /// slope 0, as Mitsuba's is. Vertex colours are taken as constant
+    /// here (their slope in uv is not known to the slot): a bump map of
+    /// them has slope 0, and one multiplied by them is scaled.
+    pub fn gradient(&self, at: impl Into<TexturePoint>, default_channel: u8) -> Vec2 {
+        let at = at.into();
         let c = self.channel.unwrap_or(default_channel);
         let in_texture = match (&self.source, self.filter) {
             (SlotSource::Image(image), TextureFilter::Bilinear) => {
-                image.gradient_channel(self.uv.apply(uv), c)
+                image.gradient_channel(self.uv.apply(at.uv), c)
             }
             (SlotSource::Image(_), TextureFilter::Nearest)
-            | (SlotSource::Checkerboard { .. }, _) => Vec2::ZERO,
+            | (SlotSource::Checkerboard { .. } | SlotSource::VertexColor, _) => Vec2::ZERO,
         };
-        self.uv.pull_back_gradient(in_texture) * self.scale
+        self.uv.pull_back_gradient(in_texture) * self.scale * self.vertex_factor(at, c)
     }
 
     /// Channel `c` (0 R, 1 G, 2 B, 3 alpha: 1 where the source has none)
-    /// at surface coordinates `uv`, unscaled.
-    fn channel_at(&self, uv: Vec2, c: u8) -> f32 {
-        let st = self.uv.apply(uv);
-        match &self.source {
+    /// at a point, unscaled.
+    fn channel_at(&self, at: TexturePoint, c: u8) -> f32 {
+        let st = self.uv.apply(at.uv);
+        let value = match &self.source {
             SlotSource::Image(image) => match self.filter {
                 TextureFilter::Bilinear => image.lookup_channel(st, c),
                 TextureFilter::Nearest => image.nearest_channel(st, c),
@@ -148,7 +177,28 @@ impl SlotTexture {
                 0..=2 => checker(st, *color0, *color1)[c as usize],
                 _ => 1.0,
             },
+            SlotSource::VertexColor => vertex_channel(at, c),
+        };
+        value * self.vertex_factor(at, c)
+    }
+
+    /// The factor `times_vertex_color` puts on channel `c`: the vertex
+    /// colour's channel (1 for alpha), or 1.
+    fn vertex_factor(&self, at: TexturePoint, c: u8) -> f32 {
+        if self.times_vertex_color {
+            vertex_channel(at, c)
+        } else {
+            1.0
         }
+    }
+}
+
+/// Channel `c` of the vertex colour at `at` (alpha: 1, vertex colours are
+/// opaque).
+fn vertex_channel(at: TexturePoint, c: u8) -> f32 {
+    match c {
+        0..=2 => at.vertex_color[c as usize],
+        _ => 1.0,
     }
 }
 

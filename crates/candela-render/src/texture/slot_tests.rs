@@ -199,3 +199,69 @@ fn a_bump_gradient_follows_the_transform_by_the_chain_rule() {
     }
     assert!(checked >= 20, "only {checked} points away from kinks");
 }
+
+#[test]
+fn a_vertex_colour_slot_reads_the_points_colour_whatever_its_uv() {
+    let slot = SlotTexture {
+        source: SlotSource::VertexColor,
+        scale: 0.5,
+        // Ignored by vertex colours: they are not read at uv.
+        uv: UvTransform(Affine2::from_scale(Vec2::splat(3.0))),
+        ..SlotTexture::of_image(halves())
+    };
+    let color = Vec3::new(0.2, 0.6, 0.9);
+    for uv in [Vec2::new(0.1, 0.2), Vec2::new(0.7, -4.0)] {
+        let at = TexturePoint::new(uv, color);
+        assert_eq!(slot.color(at), 0.5 * color);
+        assert_eq!(slot.value(at, 1), 0.5 * color.y);
+        assert_eq!(slot.value(at, 3), 0.5, "vertex colours are opaque");
+        assert_eq!(slot.gradient(at, 0), Vec2::ZERO);
+    }
+    // A point given by uv alone (a mesh without colours) reads white.
+    assert_eq!(slot.color(Vec2::new(0.3, 0.3)), Vec3::splat(0.5));
+}
+
+#[test]
+fn a_texture_times_the_vertex_colour_is_their_product_channel_by_channel() {
+    let color = Vec3::new(0.25, 0.5, 0.75);
+    let product = |slot: &SlotTexture| SlotTexture {
+        times_vertex_color: true,
+        ..slot.clone()
+    };
+    let image = varied();
+    for plain in [
+        SlotTexture {
+            scale: 0.8,
+            ..SlotTexture::of_image(image.clone())
+        },
+        nearest(image, Affine2::from_scale(Vec2::new(2.0, 3.0))),
+        checkerboard(Affine2::IDENTITY),
+    ] {
+        let times = product(&plain);
+        for uv in [Vec2::new(0.13, 0.41), Vec2::new(0.62, 0.77)] {
+            let at = TexturePoint::new(uv, color);
+            // Equal up to the order of the products (an ulp or two).
+            let close =
+                |a: Vec3, b: Vec3| (a - b).abs().max_element() <= 1e-6 * b.abs().max_element();
+            assert!(close(times.color(at), plain.color(uv) * color), "{uv}");
+            assert!(close(times.rgb(at), plain.rgb(uv) * color), "{uv}");
+            for c in 0..3u8 {
+                let k = color[c as usize];
+                let value = Vec3::splat(times.value(at, c));
+                assert!(
+                    close(value, Vec3::splat(plain.value(uv, c) * k)),
+                    "{uv} {c}"
+                );
+                let g = times.gradient(at, c).extend(0.0);
+                assert!(
+                    close(g, (plain.gradient(uv, c) * k).extend(0.0)),
+                    "{uv} {c}"
+                );
+            }
+            // Alpha is not coloured.
+            assert_eq!(times.value(at, 3), plain.value(uv, 3));
+            // Without a vertex colour, the product is the plain texture.
+            assert_eq!(times.color(uv), plain.color(uv));
+        }
+    }
+}

@@ -140,6 +140,12 @@ pub struct MeshDesc {
     pub uvs: Vec<Vec2>,
     /// Per-triangle corner indices into `uvs`; empty when there are none.
     pub uv_indices: Vec<[u32; 3]>,
+    /// Per-vertex colours (linear RGB), one per entry of `positions` and
+    /// indexed by `triangles` (every format that carries them attaches
+    /// them to the vertex), or empty when the file had none: a mesh
+    /// without colours costs nothing. Read by the vertex-colour texture
+    /// ([`TextureSource::VertexColor`]).
+    pub colors: Vec<Vec3>,
     /// Index into [`SceneDesc::materials`] (an instance may override it).
     pub material: usize,
     /// Where the mesh was described.

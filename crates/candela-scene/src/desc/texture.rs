@@ -8,6 +8,13 @@
 //! UV convention (every loader converts to it): `u` runs left to right
 //! across an image, `v` bottom to top (an image's top row is at `v = 1`),
 //! and textures tile the plane with period 1 in both.
+//!
+//! Vertex colours: [`TextureSource::VertexColor`] reads the mesh's
+//! per-vertex colour ([`crate::MeshDesc::colors`]) interpolated at the hit,
+//! in any slot; [`TextureRef::times_vertex_color`] multiplies any other
+//! texture by it (glTF's `COLOR_0`, which multiplies the base colour
+//! texture). Where a mesh has no colours the vertex colour is white, so
+//! either leaves such a mesh as it would be without it.
 
 use glam::{Affine2, Mat2, Vec2, Vec3};
 use std::path::{Path, PathBuf};
@@ -55,6 +62,10 @@ pub enum TextureSource {
         /// The colour of its neighbours.
         color1: Vec3,
     },
+    /// The mesh's vertex colours, interpolated barycentrically at the hit
+    /// (linear; white on meshes without colours and on spheres). Ignores
+    /// the uv transform and the filter.
+    VertexColor,
 }
 
 impl TextureSource {
@@ -144,6 +155,9 @@ pub struct TextureRef {
     pub filter: TextureFilter,
     /// Applied to the surface's uv before the lookup.
     pub uv: UvTransform,
+    /// Whether every value read is multiplied by the surface's vertex
+    /// colour (see the module docs): glTF's `baseColorTexture × COLOR_0`.
+    pub times_vertex_color: bool,
 }
 
 impl TextureRef {
@@ -162,6 +176,11 @@ impl TextureRef {
         )
     }
 
+    /// The mesh's vertex colours, unscaled.
+    pub fn vertex_color() -> Self {
+        Self::of(TextureSource::VertexColor, ColorSpace::Linear)
+    }
+
     fn of(source: TextureSource, color_space: ColorSpace) -> Self {
         Self {
             source,
@@ -170,6 +189,7 @@ impl TextureRef {
             channel: None,
             filter: TextureFilter::default(),
             uv: UvTransform::IDENTITY,
+            times_vertex_color: false,
         }
     }
 
@@ -177,7 +197,7 @@ impl TextureRef {
     pub fn image_path(&self) -> Option<&Path> {
         match &self.source {
             TextureSource::Image(p) => Some(p),
-            TextureSource::Checkerboard { .. } => None,
+            TextureSource::Checkerboard { .. } | TextureSource::VertexColor => None,
         }
     }
 }

@@ -263,6 +263,24 @@ pub(super) fn vec2(
     })
 }
 
+/// A `COLOR_n` attribute: `VEC3` or `VEC4` (alpha 1 when absent), float
+/// or normalised unsigned 8/16-bit, as the spec allows.
+pub(super) fn colors(
+    ctx: &Ctx,
+    buffers: &Buffers,
+    acc: &gltf::Accessor,
+) -> Result<Vec<glam::Vec4>, LoadError> {
+    let types = [DataType::F32, DataType::U8, DataType::U16];
+    let dims = match acc.dimensions() {
+        Dimensions::Vec3 => Dimensions::Vec3,
+        _ => Dimensions::Vec4,
+    };
+    let n = dims.multiplicity();
+    read(ctx, buffers, acc, dims, &types, |b, ty| {
+        glam::Vec4::from_array([0, 1, 2, 3].map(|k| if k < n { component(b, ty, k) } else { 1.0 }))
+    })
+}
+
 /// A `SCALAR` unsigned index accessor.
 pub(super) fn indices(
     ctx: &Ctx,

@@ -6,6 +6,9 @@
 //! (`specularFactor`, `specularColorFactor`; its two textures are reported
 //! and not read), and every texture in its slot.
 //!
+//! A primitive with vertex colours (`COLOR_0`) multiplies its base colour
+//! by them ([`times_vertex_colors`]).
+//!
 //! A factor that multiplies a texture becomes the texture's scale; the
 //! slot's scale is one number, so a non-grey colour factor is averaged (and
 //! reported). Alpha: `MASK` puts the base colour's alpha in the opacity
@@ -22,7 +25,9 @@
 use super::accessors::Buffers;
 use super::textures::texture_ref;
 use super::Ctx;
-use crate::desc::{BsdfDesc, ColorSpace, MaterialDesc, Sides, TextureSlot, UvTransform};
+use crate::desc::{
+    BsdfDesc, ColorSpace, MaterialDesc, Sides, TextureRef, TextureSlot, UvTransform,
+};
 use crate::error::LoadError;
 use glam::{Affine2, Vec2, Vec3};
 use gltf::material::AlphaMode;
@@ -229,6 +234,27 @@ fn khr_texture_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> Uv
     );
     let flip = Affine2::from_cols(Vec2::X, -Vec2::Y, Vec2::Y);
     UvTransform(flip * gltf * flip)
+}
+
+/// Makes `desc`'s base colour the product glTF defines for a primitive
+/// with `COLOR_0`: factor × texture × vertex colour. A base colour texture
+/// is multiplied by the vertex colour ([`TextureRef::times_vertex_color`]);
+/// without one the vertex colour becomes the texture, scaled by the factor
+/// (a coloured factor by its mean, reported, as on any texture).
+pub(super) fn times_vertex_colors(ctx: &Ctx, desc: &mut MaterialDesc) -> Result<(), LoadError> {
+    if let Some(t) = &mut desc.textures.color {
+        t.times_vertex_color = true;
+        return Ok(());
+    }
+    let base = match desc.bsdf {
+        BsdfDesc::MetallicRoughness { base_color, .. } => base_color,
+        BsdfDesc::Diffuse { albedo } => albedo,
+        _ => Vec3::ONE,
+    };
+    let mut t = TextureRef::vertex_color();
+    t.scale = grey(ctx, "baseColorFactor", base)?;
+    desc.textures.set(TextureSlot::Color, t);
+    Ok(())
 }
 
 /// The one number a texture slot's scale can hold for a colour factor: the

@@ -1,7 +1,9 @@
 //! Primitives to meshes: each glTF primitive (its own material) becomes one
 //! [`MeshDesc`] in the mesh's own space, read once however many nodes use
 //! it. glTF vertices carry all their attributes, so the per-attribute index
-//! arrays of [`MeshDesc`] are the triangle indices again.
+//! arrays of [`MeshDesc`] are the triangle indices again. `COLOR_0`
+//! becomes the mesh's vertex colours (a primitive that has them draws a
+//! vertex-coloured copy of its material, `nodes.rs`).
 
 use super::accessors::{self, Buffers};
 use super::Ctx;
@@ -10,14 +12,13 @@ use crate::error::{ErrorKind, LoadError};
 use gltf::mesh::{Mode, Semantic};
 
 /// Reads primitive `prim` of mesh `mesh`; `None` (after a warning) for a
-/// primitive that draws no triangles. `material` is the scene's index of
-/// its material.
+/// primitive that draws no triangles. Its material is left for the caller
+/// to set: which copy it gets depends on the vertex colours read here.
 pub(super) fn read_primitive(
     ctx: &Ctx,
     buffers: &Buffers,
     mesh: &gltf::Mesh,
     prim: &gltf::Primitive,
-    material: usize,
 ) -> Result<Option<MeshDesc>, LoadError> {
     let at = format!("/meshes/{}/primitives/{}", mesh.index(), prim.index());
     if prim.mode() != Mode::Triangles {
@@ -78,7 +79,6 @@ pub(super) fn read_primitive(
     };
     let mut desc = MeshDesc {
         name: mesh.name().unwrap_or("mesh").to_string(),
-        material,
         ..MeshDesc::default()
     };
     if let Some(acc) = attribute(&Semantic::Normals)? {
@@ -110,6 +110,9 @@ pub(super) fn read_primitive(
             desc.tangents = tangents(ctx, buffers, &acc)?;
         }
     }
+    if let Some(acc) = attribute(&Semantic::Colors(0))? {
+        desc.colors = vertex_colors(ctx, buffers, &acc)?;
+    }
     for (sem, _) in prim.attributes() {
         if matches!(sem, Semantic::Joints(_) | Semantic::Weights(_)) {
             ctx.warn(
@@ -118,8 +121,8 @@ pub(super) fn read_primitive(
             )?;
         } else if matches!(sem, Semantic::TexCoords(k) if k > 0) {
             ctx.warn("TEXCOORD_1+", "only TEXCOORD_0 is read")?;
-        } else if matches!(sem, Semantic::Colors(_)) {
-            ctx.warn("COLOR_0", "vertex colours are not supported; ignored")?;
+        } else if matches!(sem, Semantic::Colors(k) if k > 0) {
+            ctx.warn("COLOR_1+", "only COLOR_0 is read")?;
         }
     }
     desc.positions = positions;
@@ -138,6 +141,31 @@ fn triangles_of(ctx: &Ctx, at: &str, idx: &[u32]) -> Result<Vec<[u32; 3]>, LoadE
         ));
     }
     Ok(idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect())
+}
+
+/// A `COLOR_0` accessor's linear RGB (glTF vertex colours are linear; the
+/// material multiplies its base colour by them, `materials.rs`). Alpha is
+/// not read: an alpha other than 1 is reported once.
+fn vertex_colors(
+    ctx: &Ctx,
+    buffers: &Buffers,
+    acc: &gltf::Accessor,
+) -> Result<Vec<glam::Vec3>, LoadError> {
+    let rgba = accessors::colors(ctx, buffers, acc)?;
+    if let Some(i) = rgba.iter().position(|c| !c.is_finite()) {
+        return Err(ctx.err(
+            format!("/accessors/{}", acc.index()),
+            ErrorKind::NonFinite,
+            format!("colour {i} is {}", rgba[i]),
+        ));
+    }
+    if rgba.iter().any(|c| c.w != 1.0) {
+        ctx.warn(
+            "COLOR_0 alpha",
+            "vertex colour alpha is not read (opaque); the colour is",
+        )?;
+    }
+    Ok(rgba.into_iter().map(glam::Vec4::truncate).collect())
 }
 
 /// A `TANGENT` accessor: xyz normalised (exporters round), w the

@@ -22,9 +22,9 @@ struct Walk<'d> {
     /// Scene mesh index per (glTF mesh, primitive); `None` for a primitive
     /// that draws nothing.
     meshes: HashMap<(usize, usize), Option<usize>>,
-    /// Scene material index per glTF material.
-    materials: HashMap<usize, usize>,
-    default_material: Option<usize>,
+    /// Scene material index per glTF material (`None`: the default
+    /// grey) and whether it is drawn on vertex colours.
+    materials: HashMap<(Option<usize>, bool), usize>,
     cameras: Vec<(usize, CameraDesc)>,
     buffers: &'d Buffers<'d>,
 }
@@ -60,7 +60,6 @@ pub(super) fn read_scene(
         },
         meshes: HashMap::new(),
         materials: HashMap::new(),
-        default_material: None,
         cameras: Vec::new(),
         buffers,
     };
@@ -153,9 +152,9 @@ fn mesh_of(
     if let Some(&known) = walk.meshes.get(&key) {
         return Ok(known);
     }
-    let material = material_of(ctx, walk, &prim.material())?;
-    let index = match meshes::read_primitive(ctx, walk.buffers, mesh, prim, material)? {
-        Some(desc) => {
+    let index = match meshes::read_primitive(ctx, walk.buffers, mesh, prim)? {
+        Some(mut desc) => {
+            desc.material = material_of(ctx, walk, &prim.material(), !desc.colors.is_empty())?;
             walk.scene.meshes.push(desc);
             Some(walk.scene.meshes.len() - 1)
         }
@@ -166,20 +165,29 @@ fn mesh_of(
 }
 
 /// The scene material of `m`, read on its first use; a primitive without a
-/// material gets the loader-wide default grey.
-fn material_of(ctx: &Ctx, walk: &mut Walk, m: &gltf::Material) -> Result<usize, LoadError> {
-    let scene = &mut walk.scene;
-    let Some(i) = m.index() else {
-        return Ok(*walk.default_material.get_or_insert_with(|| {
-            scene.materials.push(MaterialDesc::default_grey());
-            scene.materials.len() - 1
-        }));
-    };
-    if let Some(&known) = walk.materials.get(&i) {
+/// material gets the loader-wide default grey. A primitive with vertex
+/// colours (`vertex_colored`) gets its own copy whose base colour they
+/// multiply (`materials::times_vertex_colors`), so the primitives without
+/// them that share the material keep the plain one.
+fn material_of(
+    ctx: &Ctx,
+    walk: &mut Walk,
+    m: &gltf::Material,
+    vertex_colored: bool,
+) -> Result<usize, LoadError> {
+    let key = (m.index(), vertex_colored);
+    if let Some(&known) = walk.materials.get(&key) {
         return Ok(known);
     }
-    let desc = materials::read_material(ctx, walk.buffers, m)?;
+    let mut desc = match m.index() {
+        Some(_) => materials::read_material(ctx, walk.buffers, m)?,
+        None => MaterialDesc::default_grey(),
+    };
+    if vertex_colored {
+        materials::times_vertex_colors(ctx, &mut desc)?;
+    }
+    let scene = &mut walk.scene;
     scene.materials.push(desc);
-    walk.materials.insert(i, scene.materials.len() - 1);
+    walk.materials.insert(key, scene.materials.len() - 1);
     Ok(scene.materials.len() - 1)
 }

@@ -116,13 +116,13 @@ pub(super) fn read_serialized(path: &Path, shape_index: u32) -> Result<Serialize
     } else {
         Vec::new()
     };
-    if flags & HAS_COLORS != 0 {
-        // Vertex colours have no slot in the description; Mitsuba skips
-        // them too unless a texture asks for them.
-        reader
-            .reals(3 * vertices, real == 8)
-            .map_err(|e| short(format!("colours: {e}")))?;
-    }
+    // Vertex colours, linear as stored (Mitsuba's `vertex_color`
+    // attribute, read by a `mesh_attribute` texture).
+    let colors = if flags & HAS_COLORS != 0 {
+        read_vec3s(&mut reader, "colours")?
+    } else {
+        Vec::new()
+    };
     let indices = reader
         .u32s(3 * triangles)
         .map_err(|e| short(format!("triangles: {e}")))?;
@@ -161,6 +161,7 @@ pub(super) fn read_serialized(path: &Path, shape_index: u32) -> Result<Serialize
         positions,
         normals,
         uvs,
+        colors,
         triangles: tris,
         ..MeshDesc::default()
     };

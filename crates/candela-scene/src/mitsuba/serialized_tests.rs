@@ -111,7 +111,7 @@ fn read(bytes: &[u8], index: u32) -> Result<SerializedMesh, LoadError> {
 fn every_mesh_of_a_file_reads_back_in_either_version_and_precision() {
     for version in [3, 4] {
         // Colours sit between the uvs and the indices: a reader that does
-        // not skip them reads wrong indices.
+        // not read them whole reads wrong indices.
         let meshes = [
             quad(HAS_NORMALS | HAS_UVS, "first"),
             quad(DOUBLE_PRECISION | HAS_UVS | FACE_NORMALS, "second"),
@@ -133,6 +133,16 @@ fn every_mesh_of_a_file_reads_back_in_either_version_and_precision() {
                 assert_eq!(mesh.uv_indices, m.triangles);
             }
             assert_eq!(got.face_normals, m.flags & FACE_NORMALS != 0);
+            // Colours are read, one per vertex, as stored.
+            let want_colors: Vec<Vec3> = if m.flags & HAS_COLORS != 0 {
+                m.colors
+                    .iter()
+                    .map(|c| c.map(|x| x as f32).into())
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            assert_eq!(mesh.colors, want_colors);
         }
     }
 }

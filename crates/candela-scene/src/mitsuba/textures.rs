@@ -4,7 +4,8 @@
 //! |---|---|
 //! | `bitmap` | an image [`TextureRef`]: `raw` (linear) or the file's colour space, `filter_type` (`bilinear`, `nearest`), `to_uv`; `wrap_mode` other than `repeat` is reported (read as repeat) |
 //! | `checkerboard` | [`TextureSource::Checkerboard`] of `color0`/`color1` (constants; textures in them are reported), `to_uv` |
-//! | `mesh_attribute`, `volume` | reported, grey 0.5 |
+//! | `mesh_attribute` | `name` `vertex_color`: [`TextureSource::VertexColor`] (a PLY's `red green blue`, a `serialized` mesh's colours; white on a mesh without them), `scale`; other attributes are reported, grey 0.5 |
+//! | `volume` | reported, grey 0.5 |
 //!
 //! `to_uv` is a `<transform>` read as Mitsuba reads it: the 4×4 matrix of
 //! its steps (later steps apply after earlier ones), of which the rows and
@@ -22,7 +23,7 @@
 
 use super::doc::{Doc, XNode};
 use super::transform::transform;
-use super::values::{boolean, string};
+use super::values::{boolean, float, string};
 use super::Builder;
 use crate::desc::{ColorSpace, TextureFilter, TextureRef, TextureSlot, TextureSource, UvTransform};
 use crate::error::{ErrorKind, LoadError};
@@ -83,7 +84,8 @@ impl Builder {
                 // Swapped: see the module docs (colour reading, v flipped).
                 TextureRef::checkerboard(color1, color0)
             }
-            "mesh_attribute" | "volume" => {
+            "mesh_attribute" => return self.mesh_attribute(doc, node),
+            "volume" => {
                 self.warn(doc, node, "texture type rendered as grey 0.5")?;
                 return Ok(Texture::Constant(Vec3::splat(0.5)));
             }
@@ -96,6 +98,33 @@ impl Builder {
             }
         };
         t.uv = uv;
+        Ok(Texture::Varying(t))
+    }
+}
+
+impl Builder {
+    /// A `mesh_attribute` texture: the vertex colours, the one attribute
+    /// meshes carry here.
+    fn mesh_attribute(&mut self, doc: &Doc, node: XNode) -> Result<Texture, LoadError> {
+        let name = string(doc, node, "name")?.ok_or_else(|| {
+            doc.err(
+                node,
+                ErrorKind::MissingElement,
+                "mesh_attribute needs a name",
+            )
+        })?;
+        if name != "vertex_color" {
+            self.warn(
+                doc,
+                node,
+                format!(
+                    "mesh attribute \"{name}\" is not read (only vertex_color is); rendered as grey 0.5"
+                ),
+            )?;
+            return Ok(Texture::Constant(Vec3::splat(0.5)));
+        }
+        let mut t = TextureRef::vertex_color();
+        t.scale = float(doc, node, "scale", 1.0)?;
         Ok(Texture::Varying(t))
     }
 }

@@ -81,6 +81,15 @@ fn to_mesh(name: String, m: tobj::Mesh) -> MeshDesc {
     } else {
         (Vec::new(), Vec::new())
     };
+    // tobj copies a vertex's colour beside its position, one per position.
+    let colors = if m.vertex_color.len() == m.positions.len() {
+        m.vertex_color
+            .chunks_exact(3)
+            .map(|c| Vec3::new(c[0], c[1], c[2]))
+            .collect()
+    } else {
+        Vec::new()
+    };
     MeshDesc {
         name,
         positions: m
@@ -88,6 +97,7 @@ fn to_mesh(name: String, m: tobj::Mesh) -> MeshDesc {
             .chunks_exact(3)
             .map(|c| Vec3::new(c[0], c[1], c[2]))
             .collect(),
+        colors,
         triangles,
         normals,
         normal_indices,
@@ -104,8 +114,9 @@ fn triples(indices: &[u32]) -> Vec<[u32; 3]> {
         .collect()
 }
 
-/// Appends `more` to `mesh`, offsetting its indices. Normals and UVs are
-/// kept only if both meshes have them (or `mesh` is still empty).
+/// Appends `more` to `mesh`, offsetting its indices. Normals, UVs and
+/// colours are kept only if both meshes have them (or `mesh` is still
+/// empty).
 pub(crate) fn append(mesh: &mut MeshDesc, more: MeshDesc) {
     let first = mesh.triangles.is_empty();
     let offset = |base: usize, t: &[[u32; 3]]| -> Vec<[u32; 3]> {
@@ -114,9 +125,15 @@ pub(crate) fn append(mesh: &mut MeshDesc, more: MeshDesc) {
     };
     let keep_normals = first || !mesh.normal_indices.is_empty();
     let keep_uvs = first || !mesh.uv_indices.is_empty();
+    let keep_colors = first || !mesh.colors.is_empty();
     let tris = offset(mesh.positions.len(), &more.triangles);
     mesh.triangles.extend(tris);
     mesh.positions.extend(more.positions);
+    if keep_colors && !more.colors.is_empty() {
+        mesh.colors.extend(more.colors);
+    } else {
+        mesh.colors.clear();
+    }
     if keep_normals && !more.normal_indices.is_empty() {
         let t = offset(mesh.normals.len(), &more.normal_indices);
         mesh.normal_indices.extend(t);

@@ -6,7 +6,11 @@
 //! runs; n-gons fan-triangulated; separate position, normal and UV indices),
 //! and turn them into [`crate::desc`] meshes (`meshes`). OBJ is Y-up by
 //! convention, so positions are taken as they are; a mesh without vertex
-//! normals is flat-shaded. A missing `.mtl` or texture file, or an unknown
+//! normals is flat-shaded. Vertex colours (the common extension
+//! `v x y z r g b`) are read as given, linear; a mesh without a material
+//! shows them (the default grey coloured by them), a material of the
+//! `.mtl` is kept as it is (MTL has no way to name them). Colours on only
+//! some vertices are dropped and reported (`scan`). A missing `.mtl` or texture file, or an unknown
 //! `usemtl` name, is a warning (the default material is used) and an
 //! [`ErrorKind::MissingReference`] error in strict mode.
 
@@ -15,7 +19,7 @@ mod mtl;
 mod scan;
 mod statements;
 
-use crate::desc::{MaterialDesc, MeshDesc, SceneDesc, SourceLoc};
+use crate::desc::{MaterialDesc, MeshDesc, SceneDesc, SourceLoc, TextureRef, TextureSlot};
 use crate::error::{ErrorKind, LoadError};
 use crate::report::Collector;
 use crate::{LoadOptions, Loaded};
@@ -83,12 +87,19 @@ pub(crate) fn load_file(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadE
         materials,
         ..SceneDesc::default()
     };
-    let mut default_material = None;
+    // The default material, plain and on vertex colours.
+    let mut default_material = [None, None];
     for (i, model) in models.into_iter().enumerate() {
+        let colored = !model.mesh.colors.is_empty();
         let material = match model.material {
             Some(m) => m,
-            None => *default_material.get_or_insert_with(|| {
-                scene.materials.push(MaterialDesc::default_grey());
+            None => *default_material[usize::from(colored)].get_or_insert_with(|| {
+                let mut grey = MaterialDesc::default_grey();
+                if colored {
+                    grey.textures
+                        .set(TextureSlot::Color, TextureRef::vertex_color());
+                }
+                scene.materials.push(grey);
                 scene.materials.len() - 1
             }),
         };

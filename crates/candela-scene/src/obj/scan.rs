@@ -64,6 +64,8 @@ pub(crate) fn scan(text: &str, file: &Path, warnings: &mut Collector) -> Result<
     };
     // Counts of v, vt, vn so far (faces index what precedes them).
     let mut counts = [0usize; 3];
+    // How many `v` carry a colour (`v x y z r g b`).
+    let mut colored = 0usize;
     let mut faces_pending = false;
     let mut material: Option<&str> = None;
     for st in statements(text) {
@@ -94,6 +96,7 @@ pub(crate) fn scan(text: &str, file: &Path, warnings: &mut Collector) -> Result<
                     ));
                 }
                 counts[0] += 1;
+                colored += usize::from(st.args.len() >= 6);
                 // tobj reads 3 values, or 3 and w, or 3 and a colour.
                 push_numbers(&mut out.clean, &st, st.args.len().min(6));
             }
@@ -186,7 +189,39 @@ pub(crate) fn scan(text: &str, file: &Path, warnings: &mut Collector) -> Result<
             }
         }
     }
+    if colored > 0 && colored < counts[0] {
+        warnings.warn(
+            "v r g b".into(),
+            format!(
+                "{colored} of {} vertices have a colour; vertex colours ignored",
+                counts[0]
+            ),
+            SourceLoc::default,
+        )?;
+        out.clean = without_vertex_colors(&out.clean);
+    }
     Ok(out)
+}
+
+/// The plain text `clean` with every `v` cut to its position: tobj pairs
+/// colours with vertices by count, so colours on only some vertices would
+/// land on the wrong ones.
+fn without_vertex_colors(clean: &str) -> String {
+    let mut out = String::with_capacity(clean.len());
+    for line in clean.lines() {
+        match line.strip_prefix("v ") {
+            Some(rest) if rest.split_whitespace().count() >= 6 => {
+                out.push('v');
+                for x in rest.split_whitespace().take(3) {
+                    out.push(' ');
+                    out.push_str(x);
+                }
+            }
+            _ => out.push_str(line),
+        }
+        out.push('\n');
+    }
+    out
 }
 
 /// Checks one face corner `v`, `v/vt`, `v//vn` or `v/vt/vn` against the

@@ -60,6 +60,20 @@ impl Scalar {
         }
     }
 
+    /// The largest value of an integer type (a colour stored in it is
+    /// this over 1); `None` for floats.
+    pub fn integer_max(self) -> Option<f64> {
+        Some(match self {
+            Scalar::I8 => f64::from(i8::MAX),
+            Scalar::U8 => f64::from(u8::MAX),
+            Scalar::I16 => f64::from(i16::MAX),
+            Scalar::U16 => f64::from(u16::MAX),
+            Scalar::I32 => f64::from(i32::MAX),
+            Scalar::U32 => f64::from(u32::MAX),
+            Scalar::F32 | Scalar::F64 => return None,
+        })
+    }
+
     /// Whether values are integers.
     pub fn is_integer(self) -> bool {
         !matches!(self, Scalar::F32 | Scalar::F64)

@@ -2,17 +2,19 @@
 //! (fan-triangulated), and everything else read past and reported.
 
 use super::body::{Body, ReadError};
-use super::header::{Element, Header, Property};
+use super::header::{Element, Header, Property, Scalar};
 use super::located;
 use crate::desc::MeshDesc;
 use crate::error::{ErrorKind, LoadError};
 use crate::report::Collector;
+use candela_image::srgb_decode;
 use glam::{Vec2, Vec3};
 use std::path::Path;
 
 /// Property names of the vertex attributes read, in the order
-/// x y z nx ny nz u v; each entry lists the accepted spellings.
-const VERTEX_FIELDS: [&[&str]; 8] = [
+/// x y z nx ny nz u v red green blue; each entry lists the accepted
+/// spellings.
+const VERTEX_FIELDS: [&[&str]; 11] = [
     &["x"],
     &["y"],
     &["z"],
@@ -21,7 +23,13 @@ const VERTEX_FIELDS: [&[&str]; 8] = [
     &["nz"],
     &["u", "s", "texture_u"],
     &["v", "t", "texture_v"],
+    &["red", "r"],
+    &["green", "g"],
+    &["blue", "b"],
 ];
+
+/// Where the vertex colours are in [`VERTEX_FIELDS`].
+const COLOR_FIELDS: std::ops::Range<usize> = 8..11;
 
 /// Reads every element of the body described by `header`.
 pub(crate) fn read(
@@ -79,11 +87,15 @@ pub(crate) fn read(
                 }
                 has_normals = fields[3..6].iter().all(Option::is_some);
                 has_uvs = fields[6..8].iter().all(Option::is_some);
+                let colors = fields[COLOR_FIELDS]
+                    .iter()
+                    .all(Option::is_some)
+                    .then(|| ColorEncoding::of(element));
                 report_skipped(element, |p| slot_of(p).is_none(), warnings)?;
                 // Bounded above by the file's size (checked above).
                 mesh.positions.reserve(element.count as usize);
                 for i in 0..element.count {
-                    let mut values = [0f64; 8];
+                    let mut values = [0f64; 11];
                     for property in &element.properties {
                         match (property, slot_of(property.name())) {
                             (Property::Scalar { ty, .. }, Some(k)) => {
@@ -95,6 +107,7 @@ pub(crate) fn read(
                     if let Some(k) = [0, 1, 2, 6, 7]
                         .into_iter()
                         .chain(if has_normals { 3..6 } else { 0..0 })
+                        .chain(if colors.is_some() { COLOR_FIELDS } else { 0..0 })
                         .find(|&k| !(values[k] as f32).is_finite())
                     {
                         return Err(fail(
@@ -112,6 +125,10 @@ pub(crate) fn read(
                     }
                     if has_uvs {
                         mesh.uvs.push(Vec2::new(v[6], v[7]));
+                    }
+                    if let Some(encoding) = colors {
+                        let rgb = [8, 9, 10].map(|k| encoding.linear(values[k]));
+                        mesh.colors.push(Vec3::from_array(rgb));
                     }
                 }
             }
@@ -257,14 +274,51 @@ fn slot_of(name: &str) -> Option<usize> {
 }
 
 /// For each of [`VERTEX_FIELDS`], whether a scalar property provides it.
-fn field_slots(element: &Element) -> [Option<()>; 8] {
-    let mut found = [None; 8];
+fn field_slots(element: &Element) -> [Option<()>; 11] {
+    let mut found = [None; 11];
     for p in &element.properties {
         if let (Property::Scalar { .. }, Some(k)) = (p, slot_of(p.name())) {
             found[k] = Some(());
         }
     }
     found
+}
+
+/// How a PLY file stores its vertex colours, by the type of `red`: floats
+/// are linear and taken as given (Mitsuba reads them so); integers are
+/// display colours (8 bits in the files MeshLab and Blender write), scaled
+/// by the type's largest value to [0, 1] and decoded from sRGB, as an
+/// 8-bit colour image is. (Mitsuba 3 keeps integer colours unscaled, 0 to
+/// 255, and warns that it expects [0, 1].)
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum ColorEncoding {
+    /// Linear values as stored.
+    Linear,
+    /// sRGB-encoded integers up to this value.
+    SrgbInteger(f64),
+}
+
+impl ColorEncoding {
+    fn of(element: &Element) -> Self {
+        let ty = element.properties.iter().find_map(|p| match p {
+            Property::Scalar { ty, .. } if slot_of(p.name()) == Some(COLOR_FIELDS.start) => {
+                Some(*ty)
+            }
+            _ => None,
+        });
+        match ty.and_then(Scalar::integer_max) {
+            Some(max) => ColorEncoding::SrgbInteger(max),
+            None => ColorEncoding::Linear,
+        }
+    }
+
+    /// The linear value of a stored one.
+    fn linear(self, stored: f64) -> f32 {
+        match self {
+            ColorEncoding::Linear => stored as f32,
+            ColorEncoding::SrgbInteger(max) => srgb_decode((stored / max) as f32),
+        }
+    }
 }
 
 fn report_skipped(

@@ -5,16 +5,19 @@
 //!
 //! Read: the `vertex` element's `x y z`, optional `nx ny nz` and `u v`
 //! (also `s t` and `texture_u texture_v`); the `face` element's
-//! `vertex_indices` (or `vertex_index`) list, fan-triangulated. Other
-//! properties and elements are skipped and reported once by name. A PLY
-//! file carries no materials: the mesh gets the default grey one, which
-//! shades both sides.
+//! `vertex_indices` (or `vertex_index`) list, fan-triangulated; the
+//! vertices' `red green blue` (also `r g b`) colours: floats linear as
+//! given, integers scaled to [0, 1] and decoded from sRGB (`mesh.rs`,
+//! `ColorEncoding`). Other properties and elements are skipped and
+//! reported once by name. A PLY file carries no materials: the mesh gets
+//! the default grey one, which shades both sides, coloured by the vertex
+//! colours when the file has them.
 
 mod body;
 mod header;
 mod mesh;
 
-use crate::desc::{MaterialDesc, MeshDesc, SceneDesc};
+use crate::desc::{MaterialDesc, MeshDesc, SceneDesc, TextureRef, TextureSlot};
 use crate::error::LoadError;
 use crate::report::Collector;
 use crate::{LoadOptions, Loaded};
@@ -24,9 +27,15 @@ use std::path::Path;
 pub(crate) fn load_file(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadError> {
     let mut warnings = Collector::new(path.to_path_buf(), opts.strict);
     let mesh = read_ply_mesh(path, &mut warnings)?;
+    let mut material = MaterialDesc::default_grey();
+    if !mesh.colors.is_empty() {
+        material
+            .textures
+            .set(TextureSlot::Color, TextureRef::vertex_color());
+    }
     let mut scene = SceneDesc {
         source: path.to_path_buf(),
-        materials: vec![MaterialDesc::default_grey()],
+        materials: vec![material],
         ..SceneDesc::default()
     };
     scene.add_mesh(mesh);

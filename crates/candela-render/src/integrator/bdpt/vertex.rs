@@ -254,7 +254,7 @@ impl Vertex {
                 let _ = toward;
                 scene
                     .material(hit.material)
-                    .emission_at(hit.uv)
+                    .emission_at(hit.texture_point())
                     .unwrap_or(Vec3::ZERO)
             }
             _ => Vec3::ZERO,
