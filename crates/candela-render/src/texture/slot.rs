@@ -4,11 +4,11 @@
 //! metalness, normal and bump maps, emission, opacity) reads through the
 //! methods here, so each gets every source, the filter and the transform
 //! alike: the surface's uv is transformed first, then the source is read
-//! there (an image tiles the plane, so a transformed uv outside [0, 1)
-//! repeats it).
+//! there (an image outside [0, 1) repeats, mirrors or clamps as its
+//! [`TextureWrap`] says).
 
 use super::{ImageTexture, TextureCache};
-use candela_scene::{TextureFilter, TextureRef, TextureSource, UvTransform};
+use candela_scene::{TextureFilter, TextureRef, TextureSource, TextureWrap, UvTransform};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
@@ -40,18 +40,21 @@ pub struct SlotTexture {
     pub channel: Option<u8>,
     /// How an image is read between texel centres.
     pub filter: TextureFilter,
+    /// How an image is addressed beyond its edges.
+    pub wrap: TextureWrap,
     /// Applied to the surface's uv before the lookup.
     pub uv: UvTransform,
 }
 
 impl SlotTexture {
-    /// `image`, unscaled, bilinear, at the surface's own uv.
+    /// `image`, unscaled, bilinear, repeating, at the surface's own uv.
     pub fn of_image(image: Arc<ImageTexture>) -> Self {
         Self {
             source: SlotSource::Image(image),
             scale: 1.0,
             channel: None,
             filter: TextureFilter::Bilinear,
+            wrap: TextureWrap::REPEAT,
             uv: UvTransform::IDENTITY,
         }
     }
@@ -71,6 +74,7 @@ impl SlotTexture {
             scale: t.scale,
             channel: t.channel,
             filter: t.filter,
+            wrap: t.wrap,
             uv: t.uv,
         })
     }
@@ -96,8 +100,8 @@ impl SlotTexture {
         let st = self.uv.apply(uv);
         match &self.source {
             SlotSource::Image(image) => match self.filter {
-                TextureFilter::Bilinear => image.lookup(st),
-                TextureFilter::Nearest => image.nearest(st),
+                TextureFilter::Bilinear => image.lookup(st, self.wrap),
+                TextureFilter::Nearest => image.nearest(st, self.wrap),
             },
             SlotSource::Checkerboard { color0, color1 } => checker(st, *color0, *color1),
         }
@@ -127,7 +131,7 @@ impl SlotTexture {
         let c = self.channel.unwrap_or(default_channel);
         let in_texture = match (&self.source, self.filter) {
             (SlotSource::Image(image), TextureFilter::Bilinear) => {
-                image.gradient_channel(self.uv.apply(uv), c)
+                image.gradient_channel(self.uv.apply(uv), c, self.wrap)
             }
             (SlotSource::Image(_), TextureFilter::Nearest)
             | (SlotSource::Checkerboard { .. }, _) => Vec2::ZERO,
@@ -141,8 +145,8 @@ impl SlotTexture {
         let st = self.uv.apply(uv);
         match &self.source {
             SlotSource::Image(image) => match self.filter {
-                TextureFilter::Bilinear => image.lookup_channel(st, c),
-                TextureFilter::Nearest => image.nearest_channel(st, c),
+                TextureFilter::Bilinear => image.lookup_channel(st, c, self.wrap),
+                TextureFilter::Nearest => image.nearest_channel(st, c, self.wrap),
             },
             SlotSource::Checkerboard { color0, color1 } => match c {
                 0..=2 => checker(st, *color0, *color1)[c as usize],

@@ -30,7 +30,9 @@ pub use material::{
     PrincipledParameters, Sides, TextureSlot, TextureSlots,
 };
 pub use perturbation::{AwayFromViewer, PerturbationRules, TangentFrame};
-pub use texture::{ColorSpace, TextureFilter, TextureRef, TextureSource, UvTransform};
+pub use texture::{
+    ColorSpace, TextureFilter, TextureRef, TextureSource, TextureWrap, UvTransform, WrapMode,
+};
 
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
