@@ -189,6 +189,10 @@ pub struct SphereDesc {
     /// (dp/du) follow them. [`SphereDesc::Y_POLE`] unless the format says
     /// otherwise (Mitsuba: the shape's `to_world` rotation).
     pub axes: Mat3,
+    /// Its normals point inward (Mitsuba's `flip_normals`): its front side,
+    /// where a one-sided BSDF scatters and its material's emission leaves,
+    /// is the inside, and a dielectric's inside is the outside.
+    pub inward: bool,
     /// Where the sphere was instanced.
     pub loc: SourceLoc,
 }
