@@ -51,7 +51,8 @@ def rect(center, radius, frac=0.45):
 
 
 def header(comment, fov_axis="x", fov=FOV_X, sensor="perspective", extra_sensor="",
-           lookat='origin="0, 0, 3.6" target="0, 0, 0" up="0, 1, 0"', max_depth=8):
+           lookat='origin="0, 0, 3.6" target="0, 0, 0" up="0, 1, 0"', max_depth=8,
+           integrator="path"):
     return f"""<?xml version="1.0" encoding="utf-8"?>
 <!--
   Conformance scene (written by make_scenes.py; edit that, not this).
@@ -62,7 +63,7 @@ def header(comment, fov_axis="x", fov=FOV_X, sensor="perspective", extra_sensor=
     <default name="max_depth" value="{max_depth}"/>
     <default name="seed" value="0"/>
 
-    <integrator type="path">
+    <integrator type="{integrator}">
         <integer name="max_depth" value="$max_depth"/>
     </integrator>
 
@@ -337,6 +338,12 @@ def write_textures():
     m = (((x - 0.5) ** 2 + (y - 0.5) ** 2) < 0.16).astype(np.float32)[..., None]
     mi.Bitmap(m, mi.Bitmap.PixelFormat.Y).convert(
         mi.Bitmap.PixelFormat.Y, mi.Struct.Type.UInt8, False).write(str(t / "disc.png"))
+    # A 4x3 image of distinct colours (sRGB), for wrap modes: its texels are
+    # large on screen, so where each mode folds them shows.
+    cols = np.array([[0.9, 0.1, 0.1], [0.1, 0.8, 0.1], [0.1, 0.2, 0.9], [0.9, 0.8, 0.1]], np.float32)
+    wrap = np.stack([cols, cols[::-1] * 0.6, np.roll(cols, 1, 0) * 0.3 + 0.05])
+    mi.Bitmap(wrap, mi.Bitmap.PixelFormat.RGB).convert(
+        mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, True).write(str(t / "wrap.png"))
     # An environment map (equirectangular, 64x32): coloured by direction so
     # that a wrong orientation or seam shows.
     ew, eh = 64, 32
@@ -896,6 +903,79 @@ emitter_scene("emit-area", "Area emitters on a sphere and on a rectangle (one-si
         </emitter>
     </shape>
 """)
+
+# --- Wrap modes, null surfaces, flipped spheres -----------------------------
+
+# A 4x3 bitmap read at uv in [-1, 2]^2 (to_uv scale 3, shift -1): outside the
+# image mirror and clamp fold the texels, for both filters.
+def wrapped(mode, filt):
+    return f"""<bsdf type="twosided"><bsdf type="diffuse">
+    <texture type="bitmap" name="reflectance">
+        <string name="filename" value="textures/wrap.png"/>
+        <string name="wrap_mode" value="{mode}"/>
+        <string name="filter_type" value="{filt}"/>
+        <transform name="to_uv">
+            <scale x="3" y="3"/>
+            <translate x="-1" y="-1"/>
+        </transform>
+    </texture>
+</bsdf></bsdf>"""
+
+
+WRAPS = [("mirror", "nearest"), ("clamp", "nearest"), ("mirror", "bilinear"), ("clamp", "bilinear")]
+text = header("Bitmap wrap_mode mirror and clamp, nearest and bilinear, read at uv in [-1, 2].") + cornell()
+xs = [-0.7, -0.23, 0.23, 0.7]
+for i, (mode, filt) in enumerate(WRAPS):
+    text += textured_panel(f"t{i}", xs[i], wrapped(mode, filt))
+add("tex-wrap", text, {f"{m} {f}": tpanel_rect(xs[i]) for i, (m, f) in enumerate(WRAPS)})
+
+# Null surfaces and flip_normals on spheres, under volpath (Mitsuba's path
+# integrator shows a null emitter black and stops shadow rays at null
+# surfaces; volpath passes them both ways). max_depth 32 so that whether a
+# crossing counts as a bounce does not matter.
+NULL_FLIP = [
+    ("null", """<bsdf type="null"/>"""),
+    ("null, area emitter", """<bsdf type="null"/>
+<emitter type="area">
+    <rgb name="radiance" value="1.5, 2.5, 4"/>
+</emitter>"""),
+    ("flip_normals, area emitter (outside)", """<boolean name="flip_normals" value="true"/>
+<bsdf type="diffuse">
+    <rgb name="reflectance" value="0.6, 0.6, 0.6"/>
+</bsdf>
+<emitter type="area">
+    <rgb name="radiance" value="6, 5, 4"/>
+</emitter>"""),
+    ("flip_normals, twosided", """<boolean name="flip_normals" value="true"/>
+<bsdf type="twosided"><bsdf type="diffuse">
+    <rgb name="reflectance" value="0.2, 0.5, 0.8"/>
+</bsdf></bsdf>"""),
+]
+text = header("Null spheres (one emitting) and flip_normals spheres (one emitting, seen from outside).",
+              max_depth=32, integrator="volpath") + cornell()
+for i, (label, b) in enumerate(NULL_FLIP):
+    text += sphere(i, ind(b), f"s{i}")
+add("shapes-null-flip", text, {**slot_regions([l for l, _ in NULL_FLIP]), "back wall": [52, 14, 76, 38]})
+
+# The camera inside a large emitting sphere with flip_normals (one-sided
+# diffuse 0.5, radiance 0.5: a furnace of about 1), three grey balls in it.
+text = header("Inside an emitting sphere with flip_normals: it lights and shows its inside.")
+text += """    <shape type="sphere" id="room">
+        <float name="radius" value="8"/>
+        <boolean name="flip_normals" value="true"/>
+        <bsdf type="diffuse">
+            <rgb name="reflectance" value="0.5, 0.5, 0.5"/>
+        </bsdf>
+        <emitter type="area">
+            <rgb name="radiance" value="0.5, 0.4, 0.3"/>
+        </emitter>
+    </shape>
+"""
+BALLS = ["0.8, 0.2, 0.2", "0.2, 0.8, 0.2", "0.2, 0.2, 0.8"]
+for i, rgb in enumerate(BALLS):
+    text += sphere(i, f'        <bsdf type="diffuse"><rgb name="reflectance" value="{rgb}"/></bsdf>', f"s{i}")
+add("shapes-flip-inside", text, {**slot_regions(["red ball", "green ball", "blue ball"]),
+                                 "room wall": [100, 10, 124, 30]})
 
 # --- Sensors ----------------------------------------------------------------
 

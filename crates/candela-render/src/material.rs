@@ -34,6 +34,11 @@ pub struct Material {
     /// Whether the BSDF's roughness differs along the two tangents, so its
     /// shading frame must follow the surface's dp/du.
     pub anisotropic: bool,
+    /// An invisible surface ([`BsdfDesc::Null`]): every ray passes through
+    /// it (`shading/opacity.rs`); one that emits is still met by the
+    /// integrators' closest-hit queries, which add its emission and go on
+    /// past it (`scene/visibility.rs`).
+    pub invisible: bool,
 }
 
 /// What a surface does seen from behind its shading normal.
@@ -147,7 +152,7 @@ impl Material {
                 k,
             }),
             BsdfDesc::Conductor { eta, k, .. } => Some(Bsdf::Conductor { eta, k }),
-            BsdfDesc::Black => None,
+            BsdfDesc::Black | BsdfDesc::Null => None,
             BsdfDesc::MetallicRoughness {
                 base_color,
                 metallic,
@@ -195,6 +200,7 @@ impl Material {
                 textures,
                 back,
                 anisotropic,
+                invisible: desc.bsdf == BsdfDesc::Null,
             },
             unsupported,
         )

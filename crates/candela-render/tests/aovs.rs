@@ -44,6 +44,7 @@ fn depth_inside_a_sphere_is_its_radius() {
             center: Vec3::ZERO,
             radius: 2.0,
             material: 0,
+            inward: false,
             loc: SourceLoc::default(),
         }],
         materials: vec![material(

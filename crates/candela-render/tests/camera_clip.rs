@@ -35,6 +35,7 @@ fn room_and_ball(clip: Option<ClipRange>) -> SceneDesc {
             center: Vec3::new(0.0, 0.0, -1.5),
             radius: 0.5,
             material: 0,
+            inward: false,
             loc: SourceLoc::default(),
         }],
         materials: vec![common::material(

@@ -74,6 +74,35 @@ fn furnace_single_bounce_view_isolates_one_term() {
 }
 
 #[test]
+fn a_sphere_turned_inward_is_a_furnace_inside_and_black_outside() {
+    // Mitsuba's flip_normals on an emitting sphere: a one-sided diffuse
+    // wall that emits `le` toward the centre. Inside it is the white
+    // furnace (le / (1 − albedo)); outside, its back, nothing is seen.
+    let (albedo, le) = (0.6f64, 0.5f64);
+    let mut scene = analytic_sphere();
+    scene.lights.clear();
+    scene.spheres[0].inward = true;
+    scene.materials[0] = candela_scene::MaterialDesc {
+        sides: candela_scene::Sides::Front,
+        ..material(
+            "wall",
+            candela_scene::BsdfDesc::Diffuse {
+                albedo: glam::Vec3::splat(albedo as f32),
+            },
+            Some(glam::Vec3::splat(le as f32)),
+        )
+    };
+    for mode in MODES {
+        let e = estimate(&scene, path(100_000, true, mode), 8, 32, 21);
+        assert_converges(&format!("{mode:?}, inside"), &e, le / (1.0 - albedo), Z);
+        let mut outside = scene.clone();
+        outside.cameras = vec![camera_at(glam::Vec3::new(0.0, 0.0, 3.0))];
+        let e = estimate(&outside, path(100_000, true, mode), 8, 8, 22);
+        assert_eq!((e.mean, e.invalid), (0.0, 0), "{mode:?}, outside");
+    }
+}
+
+#[test]
 fn pbrt_analytic_sphere_has_unit_radiance() {
     let scene = analytic_sphere();
     for mode in [LightingMode::Light, LightingMode::Mis] {

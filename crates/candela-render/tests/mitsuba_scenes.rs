@@ -143,6 +143,7 @@ fn a_constant_environment_is_seen_in_every_direction() {
             center: Vec3::splat(1000.0),
             radius: 1e-3,
             material: 0,
+            inward: false,
             loc: SourceLoc::default(),
         }],
         materials: vec![common::material(

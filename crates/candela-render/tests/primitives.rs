@@ -70,6 +70,7 @@ fn mixed_scene(rng: &mut Rng) -> SceneDesc {
         center,
         radius,
         material: 1,
+        inward: false,
         loc: SourceLoc::default(),
     };
     SceneDesc {

@@ -23,7 +23,9 @@ use candela_render::light::{EnvironmentMap, EnvironmentOptions};
 use candela_render::render::{render, RenderSettings};
 use candela_render::scene::{Scene, SceneOptions};
 use candela_render::texture::ImageTexture;
-use candela_scene::{BsdfDesc, ColorSpace, MaterialDesc, MeshDesc, SceneDesc, TextureRef};
+use candela_scene::{
+    BsdfDesc, ColorSpace, MaterialDesc, MeshDesc, SceneDesc, TextureRef, TextureWrap,
+};
 use glam::{Vec2, Vec3};
 use std::path::Path;
 use std::sync::Arc;
@@ -206,7 +208,7 @@ fn a_textured_quad_renders_the_texture() {
             (x as f32 + 0.5) / SIZE as f32,
             1.0 - (y as f32 + 0.5) / SIZE as f32,
         );
-        texture.lookup(uv).to_array()
+        texture.lookup(uv, TextureWrap::REPEAT).to_array()
     })
     .expect("exact image");
     let zero = RgbImage::new(SIZE as usize, SIZE as usize).expect("zeros");

@@ -3,7 +3,9 @@
 
 mod gltf;
 
-use candela_scene::{load, BsdfDesc, LightKind, LoadOptions, Loaded, Projection, TextureSlot};
+use candela_scene::{
+    load, BsdfDesc, LightKind, LoadOptions, Loaded, Projection, TextureSlot, TextureWrap, WrapMode,
+};
 use glam::{Mat4, Vec3};
 use gltf::{glb, gltf_text, write};
 use serde_json::json;
@@ -436,4 +438,41 @@ fn khr_texture_transform_places_every_texture_as_the_extension_says() {
     // A reference without the extension reads at the surface's own uv.
     let plain = t.get(TextureSlot::Roughness).expect("roughness").uv;
     assert!(plain.is_identity());
+}
+
+#[test]
+fn sampler_wrap_modes_are_kept_per_axis() {
+    // 33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT, 10497 REPEAT (the
+    // default when a sampler or its field is absent).
+    let png = gltf::data_uri(b"\x89PNG not really");
+    let text = gltf_text(|d| {
+        d["images"] = json!([{"uri": png.replace("application/octet-stream", "image/png")}]);
+        d["samplers"] = json!([{"wrapS": 33071, "wrapT": 33648}, {"wrapT": 33071}]);
+        d["textures"] = json!([
+            {"source": 0, "sampler": 0},
+            {"source": 0, "sampler": 1},
+            {"source": 0}
+        ]);
+        d["materials"] = json!([{
+            "pbrMetallicRoughness": {
+                "baseColorTexture": {"index": 0},
+                "metallicRoughnessTexture": {"index": 1}},
+            "normalTexture": {"index": 2}
+        }]);
+    });
+    let l = load_ok(&write("samplers.gltf", &text));
+    assert!(l.report.is_empty(), "{}", l.report);
+    let t = &l.scene.materials[0].textures;
+    let wrap = |slot| t.get(slot).expect("textured").wrap;
+    let clamp_mirror = TextureWrap {
+        u: WrapMode::Clamp,
+        v: WrapMode::Mirror,
+    };
+    let repeat_clamp = TextureWrap {
+        u: WrapMode::Repeat,
+        v: WrapMode::Clamp,
+    };
+    assert_eq!(wrap(TextureSlot::Color), clamp_mirror);
+    assert_eq!(wrap(TextureSlot::Roughness), repeat_clamp);
+    assert_eq!(wrap(TextureSlot::Normal), TextureWrap::REPEAT);
 }

@@ -181,25 +181,22 @@ fn a_spheres_axes_are_its_to_world_rotation_with_the_pole_on_local_z() {
 }
 
 #[test]
-fn flip_normals_on_a_sphere_swaps_the_sides_of_its_bsdf() {
+fn flip_normals_turns_a_spheres_front_and_emission_inward() {
     let l = load_shapes(
         "mitsuba-flipped-sphere",
         r#"
     <shape type="sphere"><boolean name="flip_normals" value="true"/>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>
-    <shape type="sphere"><boolean name="flip_normals" value="true"/>
-        <bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>"#,
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="2"/></emitter></shape>
+    <shape type="sphere"><bsdf type="diffuse"/></shape>"#,
     );
     let s = &l.scene.spheres;
     let m = &l.scene.materials;
-    // One-sided: black on Candela's outward front, the diffuse inside.
+    // The sphere's front is its inside: the material stays as written
+    // (one-sided diffuse, emitting), nothing reported.
+    assert!(s[0].inward && !s[1].inward);
     let flipped = &m[s[0].material];
-    assert_eq!(flipped.bsdf, BsdfDesc::Black);
-    let Sides::Back(inside) = &flipped.sides else {
-        panic!("{:?}", flipped.sides)
-    };
-    assert_eq!(albedo(inside), Vec3::splat(0.6));
-    // Two-sided: the same either way.
-    assert_eq!(m[s[1].material].sides, Sides::Both);
-    assert_eq!(albedo(&m[s[1].material]), Vec3::splat(0.5));
+    assert_eq!(flipped.sides, Sides::Front);
+    assert_eq!(albedo(flipped), Vec3::splat(0.6));
+    assert_eq!(flipped.emission, Some(Vec3::splat(2.0)));
 }

@@ -1,10 +1,11 @@
 //! The Mitsuba loader's textures read into the description: bitmaps with
 //! their filter and `to_uv`, checkerboards (as a colour and as one value),
-//! and what is still unsupported (a mesh attribute other than the vertex
-//! colours) reported once by name.
+//! wrap modes, and what is still unsupported (a mesh attribute other than
+//! the vertex colours) reported once by name.
 
 use candela_scene::{
     load, LoadOptions, Loaded, MaterialDesc, TextureFilter, TextureRef, TextureSlot, TextureSource,
+    TextureWrap, WrapMode,
 };
 use glam::{Vec2, Vec3};
 
@@ -122,27 +123,57 @@ fn colour_at(t: &TextureRef, uv: Vec2) -> Vec3 {
 }
 
 #[test]
-fn unsupported_wrap_modes_and_texture_types_are_reported_once_by_name() {
-    let l = load_scene(
-        "mitsuba-tex-unsupported",
-        r#"<scene version="3.0.0">
-    <bsdf type="diffuse" id="a">
+fn wrap_modes_are_kept_for_both_axes_and_unsupported_types_reported_once_by_name() {
+    let bitmap = |id: &str, mode: &str| {
+        format!(
+            r#"<bsdf type="diffuse" id="{id}">
         <texture type="bitmap" name="reflectance">
             <string name="filename" value="t.png"/>
-            <string name="wrap_mode" value="mirror"/>
+            <string name="wrap_mode" value="{mode}"/>
         </texture>
     </bsdf>
+    <shape type="rectangle"><ref id="{id}"/></shape>"#
+        )
+    };
+    let l = load_scene(
+        "mitsuba-tex-unsupported",
+        &format!(
+            r#"<scene version="3.0.0">
+    {}{}{}
     <bsdf type="diffuse" id="b">
         <texture type="mesh_attribute" name="reflectance">
             <string name="name" value="face_color"/>
         </texture>
     </bsdf>
-    <shape type="rectangle"><ref id="a"/></shape>
     <shape type="rectangle"><ref id="b"/></shape>
 </scene>"#,
+            bitmap("m", "mirror"),
+            bitmap("c", "clamp"),
+            bitmap("r", "repeat")
+        ),
     );
-    assert_eq!(l.report.len(), 2, "{}", l.report);
-    assert!(l.report.mentions("wrap_mode \"mirror\""), "{}", l.report);
+    assert_eq!(l.report.len(), 1, "{}", l.report);
     // Vertex colours are read; another mesh attribute is named.
     assert!(l.report.mentions("\"face_color\""), "{}", l.report);
+    for (id, mode) in [
+        ("m", WrapMode::Mirror),
+        ("c", WrapMode::Clamp),
+        ("r", WrapMode::Repeat),
+    ] {
+        let t = slot(material(&l, id), TextureSlot::Color);
+        assert_eq!(t.wrap, TextureWrap::both(mode), "{id}");
+    }
+    let dir = candela_testkit::TempDir::new("mitsuba-tex-bad-wrap");
+    std::fs::write(dir.join("t.png"), b"not read").unwrap();
+    let path = dir.join("scene.xml");
+    std::fs::write(
+        &path,
+        format!(r#"<scene version="3.0.0">{}</scene>"#, bitmap("x", "wrap")),
+    )
+    .unwrap();
+    let err = load(&path, &LoadOptions::default()).unwrap_err();
+    assert!(
+        err.to_string().contains("unknown wrap_mode \"wrap\""),
+        "{err}"
+    );
 }

@@ -17,7 +17,7 @@ use crate::sampling::warp::{
     uniform_sphere_pdf,
 };
 use crate::sampling::Sampler;
-use crate::scene::Scene;
+use crate::scene::{continue_past, Scene, MAX_CUTOUTS};
 use crate::shading::{scatter_allowed, scatter_allowed_given, ShadingFrame};
 use crate::shape::SurfaceHit;
 use glam::{Vec2, Vec3};
@@ -224,19 +224,20 @@ fn estimate_hemisphere<R: PathRecorder>(
         }
         let ray = Ray::new(hit.spawn_origin(wi), wi);
         ctx.rays.shadow += 1;
-        let found = scene.intersect_visible(&ray, &mut ctx.rays.traversal);
-        let le = match &found {
-            Some(h) if h.front_face => scene
-                .material(h.material)
-                .emission_at(h.texture_point())
-                .unwrap_or(Vec3::ZERO),
-            Some(_) => Vec3::ZERO,
-            None => scene
-                .lights
-                .infinite_lights()
-                .map(|i| scene.lights.get(i).le(wi))
-                .sum(),
-        };
+        let (found, crossed) = emission_crossed(scene, &ray, ctx);
+        let le = crossed
+            + match &found {
+                Some(h) if h.front_face => scene
+                    .material(h.material)
+                    .emission_at(h.texture_point())
+                    .unwrap_or(Vec3::ZERO),
+                Some(_) => Vec3::ZERO,
+                None => scene
+                    .lights
+                    .infinite_lights()
+                    .map(|i| scene.lights.get(i).le(wi))
+                    .sum(),
+            };
         let value = f * le * (wi_local.z.abs() / pdf);
         sum += value;
         event.traced = true;
@@ -246,6 +247,33 @@ fn estimate_hemisphere<R: PathRecorder>(
         rec.hemisphere_ray(&event);
     }
     sum / samples as f32
+}
+
+/// The closest surface that scatters along `ray`, and the emission of the
+/// invisible (null) emitting surfaces it passes on the way (each on its
+/// front side), which the hemisphere estimate adds like any other.
+fn emission_crossed(
+    scene: &Scene,
+    ray: &Ray,
+    ctx: &mut ThreadContext,
+) -> (Option<SurfaceHit>, Vec3) {
+    let mut le = Vec3::ZERO;
+    let mut segment = *ray;
+    let mut found = scene.intersect_visible(&segment, &mut ctx.rays.traversal);
+    for _ in 0..MAX_CUTOUTS {
+        let Some(h) = found.filter(|h| scene.material(h.material).invisible) else {
+            break;
+        };
+        if h.front_face {
+            le += scene
+                .material(h.material)
+                .emission_at(h.uv)
+                .unwrap_or(Vec3::ZERO);
+        }
+        segment = continue_past(&segment, &h);
+        found = scene.intersect_visible(&segment, &mut ctx.rays.traversal);
+    }
+    (found, le)
 }
 
 /// Ray origins offset from a vertex ([`SurfaceHit::spawn_origin`]), one per

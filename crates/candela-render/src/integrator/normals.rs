@@ -9,7 +9,7 @@ use glam::Vec3;
 /// The shading normal at the first hit, mapped to [0, 1]³; the hit's AOVs
 /// go to `aov`.
 pub fn normals(scene: &Scene, ray: &Ray, ctx: &mut ThreadContext, aov: &mut FirstHitAov) -> Vec3 {
-    match scene.intersect_visible(ray, &mut ctx.rays.traversal) {
+    match scene.intersect_scattering(ray, &mut ctx.rays.traversal) {
         Some(hit) => {
             aov.record(&hit, scene.material(hit.material));
             hit.ns_facing() * 0.5 + Vec3::splat(0.5)

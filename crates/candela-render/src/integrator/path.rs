@@ -31,7 +31,7 @@ use crate::bsdf::Bsdf;
 use crate::geometry::Ray;
 use crate::light::{LightContext, LightSelection, LightSelector};
 use crate::sampling::Sampler;
-use crate::scene::Scene;
+use crate::scene::{continue_past, Scene, MAX_CUTOUTS};
 use crate::settings::ROULETTE_THRESHOLD;
 use crate::shading::{sample_scatter, shading_frame, NoScatter, ShadingFrame};
 use crate::shape::SurfaceHit;
@@ -95,6 +95,8 @@ pub fn path_radiance<R: PathRecorder>(
     let mut ray = *camera_ray;
     let mut prev: Option<PrevVertex> = None;
     let mut depth = 0u32;
+    // Emitting invisible surfaces the path has gone through.
+    let mut crossed = 0u32;
     let selector = scene.lights.selector(settings.light_selection);
     let end = loop {
         let Some(hit) = scene.intersect_visible(&ray, &mut ctx.rays.traversal) else {
@@ -108,12 +110,6 @@ pub fn path_radiance<R: PathRecorder>(
         };
         rec.vertex(scene, depth, &ray, &hit, beta);
         let material = scene.material(hit.material);
-        // The first vertex's BSDF serves the AOVs and the path alike.
-        let first_bsdf = (depth == 0).then(|| {
-            let bsdf = material.bsdf_at(&hit);
-            aov.record_bsdf(&hit, bsdf.as_ref());
-            bsdf
-        });
         if settings.bounces.contains(&depth) && hit.front_face {
             if let Some(le) = material.emission_at(hit.texture_point()) {
                 let mis_weight = emitter_weight(scene, &selector, &ray, &hit, prev, settings);
@@ -128,6 +124,22 @@ pub fn path_radiance<R: PathRecorder>(
                 });
             }
         }
+        if material.invisible {
+            // An emitting null surface: its emission is in, and the path goes
+            // on as if it were not there (`scene/visibility.rs`).
+            crossed += 1;
+            if crossed > MAX_CUTOUTS {
+                break PathEnd::Absorbed;
+            }
+            ray = continue_past(&ray, &hit);
+            continue;
+        }
+        // The first vertex's BSDF serves the AOVs and the path alike.
+        let first_bsdf = (depth == 0).then(|| {
+            let bsdf = material.bsdf_at(&hit);
+            aov.record_bsdf(&hit, bsdf.as_ref());
+            bsdf
+        });
         if depth >= max_depth {
             break PathEnd::MaxDepth;
         }

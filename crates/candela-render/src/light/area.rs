@@ -49,12 +49,15 @@ pub enum AreaShape {
         /// Unit normal of the emitting side.
         normal: Vec3,
     },
-    /// A sphere emitting outward.
+    /// A sphere emitting outward, or inward when `inward`.
     Sphere {
         /// Centre.
         center: Vec3,
         /// Radius.
         radius: f32,
+        /// Emits toward its centre (normals flipped inward): seen and
+        /// sampled from inside.
+        inward: bool,
     },
 }
 
@@ -136,8 +139,15 @@ impl AreaLight {
     ) -> Option<LightSample> {
         let area = size.area;
         let (q, normal, l) = match &self.shape {
-            AreaShape::Sphere { center, radius } => {
-                return self.sample_sphere(p, *center, *radius, u)
+            AreaShape::Sphere {
+                center,
+                radius,
+                inward: false,
+            } => return self.sample_sphere(p, *center, *radius, u),
+            AreaShape::Sphere { .. } => {
+                // Inward: a point by area, seen from its front (inside).
+                let (point, l) = self.sample_point(u);
+                (point.p, point.n, l)
             }
             shape => {
                 if let Some(sampling) = solid_angle::choose(shape, p, size) {
@@ -243,10 +253,15 @@ impl AreaLight {
                     self.radiance,
                 )
             }
-            AreaShape::Sphere { center, radius } => {
-                let n = square_to_uniform_sphere(u);
-                let local = n * *radius;
+            AreaShape::Sphere {
+                center,
+                radius,
+                inward,
+            } => {
+                let outward = square_to_uniform_sphere(u);
+                let local = outward * *radius;
                 let p = *center + local;
+                let n = if *inward { -outward } else { outward };
                 let p_error = gamma(5) * local.abs() + gamma(1) * p.abs();
                 let l = match &self.textured {
                     Some(t) => {
@@ -290,9 +305,10 @@ impl AreaLight {
         ([b.x, b.y, b2], p, l)
     }
 
-    /// Spheres seen from outside are sampled uniformly in the cone they
-    /// subtend (no wasted samples on the far side); from inside they are
-    /// dark, since they emit outward.
+    /// Spheres that emit outward, seen from outside, are sampled uniformly
+    /// in the cone they subtend (no wasted samples on the far side); from
+    /// inside they are dark. (Spheres that emit inward are sampled by area:
+    /// from inside every point faces the receiver.)
     #[inline(never)]
     fn sample_sphere(&self, p: Vec3, center: Vec3, radius: f32, u: Vec2) -> Option<LightSample> {
         let to_center = center - p;
@@ -340,7 +356,11 @@ impl AreaLight {
     ) -> f32 {
         let normal = match &self.shape {
             AreaShape::Triangle { normal, .. } | AreaShape::Rect { normal, .. } => *normal,
-            AreaShape::Sphere { center, radius } => {
+            AreaShape::Sphere {
+                center,
+                radius,
+                inward: false,
+            } => {
                 let to_center = *center - p;
                 let dc2 = to_center.length_squared();
                 if dc2 <= radius * radius {
@@ -350,6 +370,8 @@ impl AreaLight {
                 let cos = wi.dot(to_center / dc2.sqrt());
                 return uniform_cone_pdf(Vec3::new(0.0, 0.0, cos), cos_max);
             }
+            // Inward: by area, the emitting normal toward the centre.
+            AreaShape::Sphere { center, .. } => (*center - p_light).normalize_or_zero(),
         };
         let cos_light = -normal.dot(wi);
         if cos_light <= 0.0 {

@@ -219,6 +219,7 @@ mod tests {
         let sphere = lamp(AreaShape::Sphere {
             center: Vec3::ZERO,
             radius: 0.1,
+            inward: false,
         });
         assert!(!LampBacks::new(&[sphere], &[0]).all_behind(above));
         let many: Vec<Light> = (0..=MAX_PLANES).map(|k| lamps()[k % 2].clone()).collect();

@@ -59,6 +59,7 @@ fn sphere(textured: Option<TexturedEmission>) -> AreaLight {
         shape: AreaShape::Sphere {
             center: Vec3::new(0.2, 1.0, -0.1),
             radius: 0.4,
+            inward: false,
         },
         radiance: Vec3::new(0.5, 1.0, 3.0),
         textured,
@@ -345,7 +346,7 @@ fn position_check(name: &str, light: &Light) -> Option<PositionCheck> {
                 }),
                 Box::new(|_| 1.0),
             )),
-            AreaShape::Sphere { center, radius } => Some((
+            AreaShape::Sphere { center, radius, .. } => Some((
                 Chi2Test::sphere(&format!("sample_le position: {name}")),
                 Box::new(move |p, _| {
                     assert!(((p - center).length() - radius).abs() < 1e-4);

@@ -37,11 +37,18 @@ fn hit_point(light: &AreaLight, p: Vec3, wi: Vec3) -> Option<Vec3> {
             let st = shape.to_square(q);
             (st.cmpge(Vec2::ZERO).all() && st.cmple(Vec2::ONE).all()).then_some(q)
         }
-        AreaShape::Sphere { center, radius } => {
+        AreaShape::Sphere {
+            center,
+            radius,
+            inward,
+        } => {
             let oc = p - *center;
             let b = oc.dot(wi);
             let disc = b * b - (oc.length_squared() - radius * radius);
-            (disc >= 0.0).then(|| p + (-b - disc.sqrt()) * wi)
+            // Outward: the near side. Inward (seen from inside): the far root,
+            // the one point ahead.
+            let root = if *inward { disc.sqrt() } else { -disc.sqrt() };
+            (disc >= 0.0).then(|| p + (-b + root) * wi)
         }
     }
 }
@@ -251,6 +258,7 @@ fn sphere_light_sampling_matches_its_pdf() {
         shape: AreaShape::Sphere {
             center: Vec3::new(0.2, 1.0, -0.1),
             radius: 0.4,
+            inward: false,
         },
         radiance: Vec3::ONE,
         textured: None,
@@ -260,6 +268,26 @@ fn sphere_light_sampling_matches_its_pdf() {
         "sphere",
         light,
         &[Vec3::new(0.0, -2.0, 0.5), Vec3::new(0.3, 0.5, 0.0)],
+    );
+}
+
+#[test]
+fn inward_sphere_light_sampling_matches_its_pdf_from_inside() {
+    let light = AreaLight {
+        shape: AreaShape::Sphere {
+            center: Vec3::new(0.2, 1.0, -0.1),
+            radius: 0.8,
+            inward: true,
+        },
+        radiance: Vec3::ONE,
+        textured: None,
+    };
+    // The centre (every direction alike) and near the wall (steep
+    // density on the near side).
+    check_area_light(
+        "inward sphere",
+        light,
+        &[Vec3::new(0.2, 1.0, -0.1), Vec3::new(0.7, 1.3, 0.1)],
     );
 }
 
@@ -309,6 +337,7 @@ fn one_sided_lights_are_dark_from_behind() {
         shape: AreaShape::Sphere {
             center: Vec3::ZERO,
             radius: 1.0,
+            inward: false,
         },
         radiance: Vec3::ONE,
         textured: None,
@@ -316,4 +345,27 @@ fn one_sided_lights_are_dark_from_behind() {
     assert!(sphere
         .sample_li(Vec3::new(0.1, 0.0, 0.0), Vec2::splat(0.5))
         .is_none());
+    // One that emits inward (Mitsuba's flip_normals) shows the outside only
+    // points q whose inside faces it: (q − c)·(q − p) > 0, for p = 3z and
+    // the unit sphere q_z < ⅓ (the near side then blocks the shadow ray).
+    let inward = Light::Area(AreaLight {
+        shape: AreaShape::Sphere {
+            center: Vec3::ZERO,
+            radius: 1.0,
+            inward: true,
+        },
+        radiance: Vec3::ONE,
+        textured: None,
+    });
+    let outside = Vec3::new(0.0, 0.0, 3.0);
+    for i in 0..64 {
+        let u = Vec2::new((i as f32 + 0.5) / 64.0, 0.61);
+        if let Some(s) = inward.sample_li(outside, u) {
+            let q = outside + s.distance * s.wi;
+            assert!(
+                q.z < 1.0 / 3.0,
+                "a point {q} facing away sampled from outside"
+            );
+        }
+    }
 }

@@ -62,6 +62,8 @@ pub struct SphereData {
     pub material: u32,
     /// Axes of its (u, v) parameterisation ([`candela_scene::SphereDesc::axes`]).
     pub axes: Mat3,
+    /// Normals point inward ([`candela_scene::SphereDesc::inward`]).
+    pub inward: bool,
 }
 
 /// Every primitive of the scene, by kind.
@@ -162,6 +164,7 @@ impl Geometry {
                 radius: s.radius,
                 material: s.material as u32,
                 axes: s.axes,
+                inward: s.inward,
             })
             .collect();
         for (kind, count) in [
@@ -222,6 +225,7 @@ impl Geometry {
                 Some(AreaShape::Sphere {
                     center: s.center,
                     radius: s.radius,
+                    inward: s.inward,
                 })
             }
         }
@@ -437,8 +441,10 @@ fn surface_hit(geometry: &Geometry, ray: &Ray, hit: &Hit) -> SurfaceHit {
             } else {
                 Vec2::from(shape::sphere_uv_in(s.axes, s.center, sp.p))
             };
+            // An inward sphere's front (shading and emitting side) is inside.
+            let n = if s.inward { -sp.n } else { sp.n };
             let white = TexturePoint::NO_VERTEX_COLOR;
-            (sp.p, sp.p_error, sp.n, sp.n, uv, None, white, s.material)
+            (sp.p, sp.p_error, n, n, uv, None, white, s.material)
         }
     };
     // Emitters emit on the side their authored (shading) normals point to;

@@ -14,6 +14,7 @@ mod visibility;
 
 pub use geometry::{Geometry, GeometryError, SphereData, TriangleData};
 pub use names::SceneNames;
+pub use visibility::{continue_past, MAX_CUTOUTS};
 
 use crate::accel::{Accel, AccelError, AccelInfo};
 use crate::camera::framing::{frame_scene, CameraMode, FramingError};
@@ -144,6 +145,14 @@ impl Scene {
                 material
             })
             .collect();
+        for (m, d) in materials.iter().zip(&desc.materials) {
+            if m.invisible && m.emission.is_some() {
+                unsupported.push(format!(
+                    "material '{}': the emission of an invisible (null) surface is seen by the path tracer only (the bidirectional integrators pass it)",
+                    d.name
+                ));
+            }
+        }
         if materials.is_empty() {
             let grey = candela_scene::MaterialDesc::default_grey();
             materials.push(Material::from_desc(&grey, &mut textures).0);
@@ -185,7 +194,9 @@ impl Scene {
             opts.bvh,
         )?;
         let build_time = start.elapsed();
-        let has_cutouts = materials.iter().any(|m| m.textures.has_opacity());
+        let has_cutouts = materials
+            .iter()
+            .any(|m| m.textures.has_opacity() || m.invisible);
         Ok(Scene {
             camera,
             geometry,

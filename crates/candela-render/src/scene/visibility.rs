@@ -1,8 +1,18 @@
-//! Visibility through opacity cut-outs: the closest hit a ray really meets
-//! and whether a segment is really blocked, for camera, bounce and shadow
-//! rays alike (see `shading/opacity.rs`). The BVH knows nothing of
-//! materials: a ray that meets a cut-out point is continued from just
-//! beyond it, here, with as many traversals as cut-outs it crosses.
+//! Visibility through opacity cut-outs and invisible (null) surfaces: the
+//! closest hit a ray really meets and whether a segment is really blocked,
+//! for camera, bounce and shadow rays alike (see `shading/opacity.rs`). The
+//! BVH knows nothing of materials: a ray that meets a cut-out point is
+//! continued from just beyond it, here, with as many traversals as
+//! cut-outs it crosses.
+//!
+//! An invisible surface that emits is the one exception: it blocks no
+//! shadow ray, but the closest-hit query [`Scene::intersect_visible`] stops
+//! there, so that an integrator adds its emission (with the MIS weight of
+//! any emitter its path finds) and then goes on along the same ray with
+//! [`continue_past`], its throughput, bounce count and previous vertex
+//! unchanged: as if the ray had passed, which is what the shadow rays of
+//! light sampling see. [`Scene::intersect_scattering`] passes these too,
+//! for the integrators that do not add such emission.
 
 use super::Scene;
 use crate::geometry::Ray;
@@ -10,9 +20,10 @@ use crate::shading::opacity::passes_through;
 use crate::shape::SurfaceHit;
 use candela_bvh::TraversalStats;
 
-/// Cut-outs crossed before a ray gives up and takes the surface it is on
-/// (a guard against pathological stacks, never reached by real scenes).
-const MAX_CUTOUTS: u32 = 1024;
+/// Cut-outs (or emitting invisible surfaces, for a path) crossed before a
+/// ray gives up and takes the surface it is on (a guard against
+/// pathological stacks, never reached by real scenes).
+pub const MAX_CUTOUTS: u32 = 1024;
 
 impl Scene {
     /// The closest surface along `ray` that is not cut out at the hit.
@@ -33,11 +44,33 @@ impl Scene {
         let mut hit = self.intersect(ray, stats)?;
         let mut segment = *ray;
         for _ in 0..MAX_CUTOUTS {
-            if !passes_through(self.material(hit.material), &hit, &segment) {
+            let material = self.material(hit.material);
+            let seen_emitting = material.invisible && material.emission.is_some();
+            if seen_emitting || !passes_through(material, &hit, &segment) {
                 return Some(hit);
             }
             segment = continue_past(&segment, &hit);
             hit = self.intersect(&segment, stats)?;
+        }
+        Some(hit)
+    }
+
+    /// The closest surface along `ray` that scatters: past cut-outs and
+    /// every invisible surface, emitting or not (for integrators that do
+    /// not add an invisible surface's emission; the scene reports them).
+    pub fn intersect_scattering(
+        &self,
+        ray: &Ray,
+        stats: &mut TraversalStats,
+    ) -> Option<SurfaceHit> {
+        let mut hit = self.intersect_visible(ray, stats)?;
+        let mut segment = *ray;
+        for _ in 0..MAX_CUTOUTS {
+            if !self.material(hit.material).invisible {
+                return Some(hit);
+            }
+            segment = continue_past(&segment, &hit);
+            hit = self.intersect_visible(&segment, stats)?;
         }
         Some(hit)
     }
@@ -68,7 +101,7 @@ impl Scene {
 }
 
 /// The rest of `ray` beyond `hit`, from just past the surface.
-fn continue_past(ray: &Ray, hit: &SurfaceHit) -> Ray {
+pub fn continue_past(ray: &Ray, hit: &SurfaceHit) -> Ray {
     let origin = hit.spawn_origin(ray.dir);
     let mut next = Ray::new(origin, ray.dir);
     if ray.t_max.is_finite() {

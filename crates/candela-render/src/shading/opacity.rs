@@ -14,14 +14,23 @@
 //! Emission follows the surface: a cut-out point neither blocks nor emits,
 //! and light sampling weights an emitter's radiance by its opacity
 //! (`light/area.rs`), so both estimators see a · Le.
+//!
+//! An invisible surface (Mitsuba's `null` BSDF) is passed by every ray, yet
+//! emits in full: the closest-hit query stops at one that emits so that the
+//! integrator can add its emission before going on past it
+//! (`scene/visibility.rs`).
 
 use crate::geometry::Ray;
 use crate::material::Material;
 use crate::sampling::hash::{mix64, unit_f32};
 use crate::shape::SurfaceHit;
 
-/// Whether `ray` passes through `material` at `hit`.
+/// Whether `ray` passes through `material` at `hit`: always through an
+/// invisible one ([`Material::invisible`]).
 pub fn passes_through(material: &Material, hit: &SurfaceHit, ray: &Ray) -> bool {
+    if material.invisible {
+        return true;
+    }
     if !material.textures.has_opacity() {
         return false;
     }

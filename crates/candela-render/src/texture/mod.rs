@@ -4,9 +4,10 @@
 //! image, `v` **bottom to top** (row 0 of the file, its top, is `v = 1`).
 //! Texel `(i, j)` covers `[i, i+1)/W × [j, j+1)/H` with its value at the
 //! centre; lookups are bilinear between the four nearest centres (or the
-//! covering texel's, [`ImageTexture::nearest`]), and
-//! addressing wraps around (the image tiles the plane), so `u = 1.25` reads
-//! what `u = 0.25` reads.
+//! covering texel's, [`ImageTexture::nearest`]). Texel indices beyond the
+//! image are folded back per axis by the texture's [`TextureWrap`]
+//! (repeat: `u = 1.25` reads what `u = 0.25` reads; mirror; clamp), each
+//! of a bilinear lookup's four texels on its own.
 //!
 //! Images are read once per path and colour space ([`TextureCache`]).
 //! PNG texels are taken from the file's stored values: decoded from sRGB
@@ -27,7 +28,7 @@ pub use point::TexturePoint;
 pub use slot::{SlotSource, SlotTexture};
 
 use candela_image::{read_exr, read_png, read_png_stored, srgb_decode, ImageError, RgbImage};
-use candela_scene::ColorSpace;
+use candela_scene::{ColorSpace, TextureWrap};
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 
@@ -73,7 +74,8 @@ pub fn native_color_space(path: &Path) -> ColorSpace {
     }
 }
 
-/// A linear RGB image with bilinear, wrapping lookups.
+/// A linear RGB image with bilinear or nearest lookups, wrapped as each
+/// lookup's [`TextureWrap`] says.
 #[derive(Clone, PartialEq)]
 pub struct ImageTexture {
     width: usize,
@@ -168,46 +170,50 @@ impl ImageTexture {
         (self.width, self.height)
     }
 
-    /// Texel at column `i`, row `j` counted from the **bottom**, wrapped
+    /// Texel at column `i`, row `j` counted from the **bottom**, repeated
     /// into the image.
     pub fn texel(&self, i: i64, j: i64) -> Vec3 {
-        self.texels[self.texel_index(i, j)]
+        self.texels[self.texel_index(i, j, TextureWrap::REPEAT)]
     }
 
-    /// Bilinear value at `uv`, wrapping around.
-    pub fn lookup(&self, uv: Vec2) -> Vec3 {
-        self.bilinear(uv, |i, j| self.texel(i, j))
+    /// Bilinear value at `uv`, wrapped as `wrap` says.
+    pub fn lookup(&self, uv: Vec2, wrap: TextureWrap) -> Vec3 {
+        self.bilinear(uv, |i, j| self.texels[self.texel_index(i, j, wrap)])
     }
 
     /// Bilinear value of channel `c` (0 R, 1 G, 2 B, 3 alpha; 1 when the
-    /// image has no alpha) at `uv`, wrapping around.
-    pub fn lookup_channel(&self, uv: Vec2, c: u8) -> f32 {
+    /// image has no alpha) at `uv`, wrapped as `wrap` says.
+    pub fn lookup_channel(&self, uv: Vec2, c: u8, wrap: TextureWrap) -> f32 {
         match (c, &self.alpha) {
             (0..=2, _) => {
-                self.bilinear(uv, |i, j| Vec3::splat(self.texel(i, j)[c as usize]))
-                    .x
+                self.bilinear(uv, |i, j| {
+                    Vec3::splat(self.texels[self.texel_index(i, j, wrap)][c as usize])
+                })
+                .x
             }
             (_, Some(alpha)) => {
-                self.bilinear(uv, |i, j| Vec3::splat(alpha[self.texel_index(i, j)]))
+                self.bilinear(uv, |i, j| Vec3::splat(alpha[self.texel_index(i, j, wrap)]))
                     .x
             }
             (_, None) => 1.0,
         }
     }
 
-    /// The texel that covers `uv` (nearest-neighbour), wrapping around.
-    pub fn nearest(&self, uv: Vec2) -> Vec3 {
+    /// The texel that covers `uv` (nearest-neighbour), wrapped as `wrap`
+    /// says.
+    pub fn nearest(&self, uv: Vec2, wrap: TextureWrap) -> Vec3 {
         let (i, j) = self.covering_texel(uv);
-        self.texel(i, j)
+        self.texels[self.texel_index(i, j, wrap)]
     }
 
     /// Channel `c` of [`ImageTexture::nearest`] (3: alpha, 1 when the
     /// image has none).
-    pub fn nearest_channel(&self, uv: Vec2, c: u8) -> f32 {
+    pub fn nearest_channel(&self, uv: Vec2, c: u8, wrap: TextureWrap) -> f32 {
         let (i, j) = self.covering_texel(uv);
+        let k = self.texel_index(i, j, wrap);
         match (c, &self.alpha) {
-            (0..=2, _) => self.texel(i, j)[c as usize],
-            (_, Some(alpha)) => alpha[self.texel_index(i, j)],
+            (0..=2, _) => self.texels[k][c as usize],
+            (_, Some(alpha)) => alpha[k],
             (_, None) => 1.0,
         }
     }
@@ -224,13 +230,18 @@ impl ImageTexture {
     }
 
     /// The gradient (∂/∂u, ∂/∂v) of [`ImageTexture::lookup_channel`] at
-    /// `uv`: the exact derivative of the bilinear interpolant (constant in
-    /// u along a row of cells, so it jumps at texel centres), as a bump
-    /// map's slope. Zero for an alpha channel the image lacks.
-    pub fn gradient_channel(&self, uv: Vec2, c: u8) -> Vec2 {
+    /// `uv`: the exact derivative of the bilinear interpolant of the
+    /// wrapped texels (constant in u along a row of cells, so it jumps at
+    /// texel centres; 0 where clamping repeats one texel), as a bump map's
+    /// slope. Zero for an alpha channel the image lacks.
+    pub fn gradient_channel(&self, uv: Vec2, c: u8, wrap: TextureWrap) -> Vec2 {
         match (c, &self.alpha) {
-            (0..=2, _) => self.bilinear_gradient(uv, |i, j| self.texel(i, j)[c as usize]),
-            (_, Some(alpha)) => self.bilinear_gradient(uv, |i, j| alpha[self.texel_index(i, j)]),
+            (0..=2, _) => self.bilinear_gradient(uv, |i, j| {
+                self.texels[self.texel_index(i, j, wrap)][c as usize]
+            }),
+            (_, Some(alpha)) => {
+                self.bilinear_gradient(uv, |i, j| alpha[self.texel_index(i, j, wrap)])
+            }
             (_, None) => Vec2::ZERO,
         }
     }
@@ -254,10 +265,14 @@ impl ImageTexture {
         Vec2::new(d_dx * w as f32, d_dy * h as f32)
     }
 
-    /// Row-major index of texel `(i, j)` (`j` from the bottom), wrapped.
-    fn texel_index(&self, i: i64, j: i64) -> usize {
-        let i = i.rem_euclid(self.width as i64) as usize;
-        let j = j.rem_euclid(self.height as i64) as usize;
+    /// Row-major index of texel `(i, j)` (`j` from the bottom), wrapped as
+    /// `wrap` says. Rows fold alike counted from the top or the bottom
+    /// (every mode is symmetric under j ↦ n − 1 − j), so a loader whose v
+    /// runs down the image needs no conversion of its wrap mode.
+    #[inline]
+    fn texel_index(&self, i: i64, j: i64, wrap: TextureWrap) -> usize {
+        let i = wrap.u.texel_index(i, self.width as i64) as usize;
+        let j = wrap.v.texel_index(j, self.height as i64) as usize;
         (self.height - 1 - j) * self.width + i
     }
 

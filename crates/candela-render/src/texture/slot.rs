@@ -4,12 +4,13 @@
 //! metalness, normal and bump maps, emission, opacity) reads through the
 //! methods here, so each gets every source, the filter and the transform
 //! alike: the surface's uv is transformed first, then the source is read
-//! there (an image tiles the plane, so a transformed uv outside [0, 1)
-//! repeats it). The vertex colour is read at the point's own colour, and
-//! a slot marked `times_vertex_color` multiplies whatever it reads by it.
+//! there (an image outside [0, 1) repeats, mirrors or clamps as its
+//! [`TextureWrap`] says). The vertex colour is read at the point's own
+//! colour, and a slot marked `times_vertex_color` multiplies whatever it
+//! reads by it.
 
 use super::{ImageTexture, TextureCache, TexturePoint};
-use candela_scene::{TextureFilter, TextureRef, TextureSource, UvTransform};
+use candela_scene::{TextureFilter, TextureRef, TextureSource, TextureWrap, UvTransform};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
@@ -44,6 +45,8 @@ pub struct SlotTexture {
     pub channel: Option<u8>,
     /// How an image is read between texel centres.
     pub filter: TextureFilter,
+    /// How an image is addressed beyond its edges.
+    pub wrap: TextureWrap,
     /// Applied to the surface's uv before the lookup.
     pub uv: UvTransform,
     /// Whether every value read is multiplied by the point's vertex colour
@@ -52,13 +55,14 @@ pub struct SlotTexture {
 }
 
 impl SlotTexture {
-    /// `image`, unscaled, bilinear, at the surface's own uv.
+    /// `image`, unscaled, bilinear, repeating, at the surface's own uv.
     pub fn of_image(image: Arc<ImageTexture>) -> Self {
         Self {
             source: SlotSource::Image(image),
             scale: 1.0,
             channel: None,
             filter: TextureFilter::Bilinear,
+            wrap: TextureWrap::REPEAT,
             uv: UvTransform::IDENTITY,
             times_vertex_color: false,
         }
@@ -80,6 +84,7 @@ impl SlotTexture {
             scale: t.scale,
             channel: t.channel,
             filter: t.filter,
+            wrap: t.wrap,
             uv: t.uv,
             times_vertex_color: t.times_vertex_color,
         })
@@ -120,8 +125,8 @@ impl SlotTexture {
         let st = self.uv.apply(at.uv);
         match &self.source {
             SlotSource::Image(image) => match self.filter {
-                TextureFilter::Bilinear => image.lookup(st),
-                TextureFilter::Nearest => image.nearest(st),
+                TextureFilter::Bilinear => image.lookup(st, self.wrap),
+                TextureFilter::Nearest => image.nearest(st, self.wrap),
             },
             SlotSource::Checkerboard { color0, color1 } => checker(st, *color0, *color1),
             SlotSource::VertexColor => at.vertex_color,
@@ -156,7 +161,7 @@ impl SlotTexture {
         let c = self.channel.unwrap_or(default_channel);
         let in_texture = match (&self.source, self.filter) {
             (SlotSource::Image(image), TextureFilter::Bilinear) => {
-                image.gradient_channel(self.uv.apply(at.uv), c)
+                image.gradient_channel(self.uv.apply(at.uv), c, self.wrap)
             }
             (SlotSource::Image(_), TextureFilter::Nearest)
             | (SlotSource::Checkerboard { .. } | SlotSource::VertexColor, _) => Vec2::ZERO,
@@ -170,8 +175,8 @@ impl SlotTexture {
         let st = self.uv.apply(at.uv);
         let value = match &self.source {
             SlotSource::Image(image) => match self.filter {
-                TextureFilter::Bilinear => image.lookup_channel(st, c),
-                TextureFilter::Nearest => image.nearest_channel(st, c),
+                TextureFilter::Bilinear => image.lookup_channel(st, c, self.wrap),
+                TextureFilter::Nearest => image.nearest_channel(st, c, self.wrap),
             },
             SlotSource::Checkerboard { color0, color1 } => match c {
                 0..=2 => checker(st, *color0, *color1)[c as usize],

@@ -4,6 +4,7 @@
 
 use super::*;
 use candela_image::RgbImage;
+use candela_scene::WrapMode;
 use glam::Affine2;
 
 const RED: Vec3 = Vec3::new(1.0, 0.0, 0.0);
@@ -262,6 +263,39 @@ fn a_texture_times_the_vertex_colour_is_their_product_channel_by_channel() {
             assert_eq!(times.value(at, 3), plain.value(uv, 3));
             // Without a vertex colour, the product is the plain texture.
             assert_eq!(times.color(uv), plain.color(uv));
+        }
+    }
+}
+
+#[test]
+fn the_uv_transform_applies_before_the_wrap() {
+    // Scaled by 2 about the origin, uv 0.75 reads texture u 1.5: past the
+    // right edge, where clamp holds the right column (BLUE), mirror reads
+    // the reversed tile's texel at 1.5 (RED, the image's left half
+    // mirrored to the right) and repeat reads u 0.5 (BLUE).
+    let scaled = Affine2::from_scale(Vec2::splat(2.0));
+    let at = Vec2::new(0.76, 0.5);
+    for (mode, expected) in [
+        (WrapMode::Clamp, BLUE),
+        (WrapMode::Mirror, RED),
+        (WrapMode::Repeat, BLUE),
+    ] {
+        let slot = SlotTexture {
+            wrap: TextureWrap::both(mode),
+            ..nearest(halves(), scaled)
+        };
+        assert_eq!(slot.rgb(at), expected, "{mode:?}");
+        // Texture u 1.52 sits 0.02 past the right edge: the bilinear
+        // weights are taken between the folded texels, so clamp is pure
+        // BLUE there and repeat mixes in the RED of texel 2 ≡ 0.
+        let bilinear = SlotTexture {
+            filter: TextureFilter::Bilinear,
+            ..slot
+        };
+        let got = bilinear.rgb(at);
+        match mode {
+            WrapMode::Clamp => assert_eq!(got, BLUE),
+            WrapMode::Mirror | WrapMode::Repeat => assert!(got.x > 0.0 && got.z > 0.0, "{got}"),
         }
     }
 }

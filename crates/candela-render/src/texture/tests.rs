@@ -3,7 +3,7 @@
 
 use super::*;
 use candela_image::{write_exr, ExrLayers};
-use candela_scene::ColorSpace;
+use candela_scene::{ColorSpace, TextureWrap, WrapMode};
 use std::sync::Arc;
 
 /// 3 × 2 texels; image row 0 (the top, v = 1) is `TOP`.
@@ -28,8 +28,14 @@ fn texel_centres_return_their_texels() {
     let t = ImageTexture::from_image(&image()).unwrap();
     for i in 0..3 {
         let u = (i as f32 + 0.5) / 3.0;
-        assert_close(t.lookup(Vec2::new(u, 0.25)), v3(BOTTOM[i]));
-        assert_close(t.lookup(Vec2::new(u, 0.75)), v3(TOP[i]));
+        assert_close(
+            t.lookup(Vec2::new(u, 0.25), TextureWrap::REPEAT),
+            v3(BOTTOM[i]),
+        );
+        assert_close(
+            t.lookup(Vec2::new(u, 0.75), TextureWrap::REPEAT),
+            v3(TOP[i]),
+        );
     }
 }
 
@@ -41,10 +47,13 @@ fn lookups_between_centres_are_bilinear() {
     let uv = Vec2::new((0.5 + 0.25) / 3.0, 0.25 + 0.75 * 0.5);
     let bottom = 0.75 * v3(BOTTOM[0]) + 0.25 * v3(BOTTOM[1]);
     let top = 0.75 * v3(TOP[0]) + 0.25 * v3(TOP[1]);
-    assert_close(t.lookup(uv), 0.25 * bottom + 0.75 * top);
+    assert_close(
+        t.lookup(uv, TextureWrap::REPEAT),
+        0.25 * bottom + 0.75 * top,
+    );
     // The image's centre: on column 1's centre, half-way between the rows.
     assert_close(
-        t.lookup(Vec2::new(0.5, 0.5)),
+        t.lookup(Vec2::new(0.5, 0.5), TextureWrap::REPEAT),
         0.5 * (v3(BOTTOM[1]) + v3(TOP[1])),
     );
 }
@@ -54,20 +63,20 @@ fn addressing_wraps_around() {
     let t = ImageTexture::from_image(&image()).unwrap();
     // u = 0 lies half-way between the last column and the first.
     assert_close(
-        t.lookup(Vec2::new(0.0, 0.25)),
+        t.lookup(Vec2::new(0.0, 0.25), TextureWrap::REPEAT),
         0.5 * (v3(BOTTOM[2]) + v3(BOTTOM[0])),
     );
     // v = 0 lies half-way between the bottom row and (wrapped) the top.
     let u1 = 1.5 / 3.0;
     assert_close(
-        t.lookup(Vec2::new(u1, 0.0)),
+        t.lookup(Vec2::new(u1, 0.0), TextureWrap::REPEAT),
         0.5 * (v3(BOTTOM[1]) + v3(TOP[1])),
     );
     // Whole periods in either direction change nothing.
     for uv in [Vec2::new(0.1, 0.3), Vec2::new(0.77, 0.91)] {
         for shift in [Vec2::new(1.0, 0.0), Vec2::new(-2.0, 3.0)] {
-            let a = t.lookup(uv);
-            let b = t.lookup(uv + shift);
+            let a = t.lookup(uv, TextureWrap::REPEAT);
+            let b = t.lookup(uv + shift, TextureWrap::REPEAT);
             assert!((a - b).abs().max_element() < 1e-5, "{uv} + {shift}");
         }
     }
@@ -97,7 +106,10 @@ fn the_cache_loads_once_and_reports_a_missing_file_once() {
     let a = cache.get(&good).expect("the EXR loads");
     let b = cache.get(&good).expect("and again");
     assert!(Arc::ptr_eq(&a, &b), "read once, shared");
-    assert_close(a.lookup(Vec2::new(0.5 / 3.0, 0.75)), v3(TOP[0]));
+    assert_close(
+        a.lookup(Vec2::new(0.5 / 3.0, 0.75), TextureWrap::REPEAT),
+        v3(TOP[0]),
+    );
     assert!(cache.get(&missing).is_none());
     assert!(cache.get(&missing).is_none());
     assert!(cache.get(&odd).is_none());
@@ -146,7 +158,7 @@ fn a_2x2_png_decodes_to_its_known_values_in_either_colour_space() {
         );
         for c in 0..4u8 {
             assert_eq!(
-                linear.lookup_channel(uv, c),
+                linear.lookup_channel(uv, c, TextureWrap::REPEAT),
                 stored[c as usize],
                 "texel {k} channel {c}"
             );
@@ -158,7 +170,7 @@ fn a_2x2_png_decodes_to_its_known_values_in_either_colour_space() {
             srgb_decode(stored[2]),
         );
         assert_eq!(srgb.texel(i, j), decoded);
-        assert_eq!(srgb.lookup_channel(uv, 3), stored[3]);
+        assert_eq!(srgb.lookup_channel(uv, 3, TextureWrap::REPEAT), stored[3]);
     }
     // A slot reading one channel (glTF roughness in G) sees it as grey.
     let slot = SlotTexture {
@@ -182,8 +194,10 @@ fn the_gradient_is_the_bilinear_lookups_slope() {
     let h = 1e-3;
     for &(u, v) in &[(0.3, 0.4), (0.55, 0.6), (0.9, 0.3), (0.05, 0.95)] {
         for c in 0..3 {
-            let g = t.gradient_channel(Vec2::new(u, v), c);
-            let at = |du: f32, dv: f32| t.lookup_channel(Vec2::new(u + du, v + dv), c);
+            let g = t.gradient_channel(Vec2::new(u, v), c, TextureWrap::REPEAT);
+            let at = |du: f32, dv: f32| {
+                t.lookup_channel(Vec2::new(u + du, v + dv), c, TextureWrap::REPEAT)
+            };
             let du = (at(h, 0.0) - at(-h, 0.0)) / (2.0 * h);
             let dv = (at(0.0, h) - at(0.0, -h)) / (2.0 * h);
             assert!(
@@ -195,6 +209,98 @@ fn the_gradient_is_the_bilinear_lookups_slope() {
     // A constant image has no slope; a missing alpha channel neither.
     let flat = RgbImage::from_pixels(2, 2, vec![[0.3, 0.3, 0.3]; 4]).unwrap();
     let flat = ImageTexture::from_image(&flat).unwrap();
-    assert_eq!(flat.gradient_channel(Vec2::new(0.37, 0.81), 0), Vec2::ZERO);
-    assert_eq!(t.gradient_channel(Vec2::new(0.37, 0.81), 3), Vec2::ZERO);
+    assert_eq!(
+        flat.gradient_channel(Vec2::new(0.37, 0.81), 0, TextureWrap::REPEAT),
+        Vec2::ZERO
+    );
+    assert_eq!(
+        t.gradient_channel(Vec2::new(0.37, 0.81), 3, TextureWrap::REPEAT),
+        Vec2::ZERO
+    );
+}
+
+/// A 4 × 3 image whose texel (i, j) (j from the bottom) holds (i, j, 0):
+/// a lookup's red and green say which texels it read.
+fn index_image() -> ImageTexture {
+    let image = RgbImage::from_fn(4, 3, |i, row| [i as f32, (2 - row) as f32, 0.0]).unwrap();
+    ImageTexture::from_image(&image).unwrap()
+}
+
+/// The texel index `i` of an axis of `n` reads, written per mode as its
+/// definition reads (tiles of period n; mirror reverses the odd tiles;
+/// clamp holds the edges).
+fn folded(mode: WrapMode, i: i64, n: i64) -> f32 {
+    let tile = i.div_euclid(n);
+    let within = i - tile * n;
+    (match mode {
+        WrapMode::Repeat => within,
+        WrapMode::Mirror if tile % 2 == 0 => within,
+        WrapMode::Mirror => n - 1 - within,
+        WrapMode::Clamp => i.max(0).min(n - 1),
+    }) as f32
+}
+
+/// Equal to rounding: texel coordinates up to 12 lose a few ulps.
+fn assert_near(a: Vec3, b: Vec3) {
+    assert!((a - b).abs().max_element() < 1e-4, "{a} vs {b}");
+}
+
+const MODES: [WrapMode; 3] = [WrapMode::Repeat, WrapMode::Mirror, WrapMode::Clamp];
+
+#[test]
+fn nearest_lookups_wrap_each_axis_at_texel_boundaries() {
+    let t = index_image();
+    let eps = 1e-4;
+    for mode_u in MODES {
+        for mode_v in MODES {
+            let wrap = TextureWrap {
+                u: mode_u,
+                v: mode_v,
+            };
+            // Just either side of every texel boundary over three periods.
+            for k in -8i64..=12 {
+                for side in [-eps, eps] {
+                    let u = k as f32 / 4.0 + side;
+                    let v = k as f32 / 3.0 + side;
+                    let i = if side < 0.0 { k - 1 } else { k };
+                    let got = t.nearest(Vec2::new(u, v), wrap);
+                    let expected = Vec3::new(folded(mode_u, i, 4), folded(mode_v, i, 3), 0.0);
+                    assert_eq!(got, expected, "{wrap:?} at ({u}, {v})");
+                    let green = t.nearest_channel(Vec2::new(u, v), 1, wrap);
+                    assert_eq!(green, expected.y, "{wrap:?} channel at ({u}, {v})");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn bilinear_lookups_wrap_each_of_the_four_texels() {
+    let t = index_image();
+    for mode in MODES {
+        let wrap = TextureWrap::both(mode);
+        for k in -8i64..=12 {
+            // At a texel centre: that texel, folded.
+            let centre = Vec2::new((k as f32 + 0.5) / 4.0, (k as f32 + 0.5) / 3.0);
+            let expected = Vec3::new(folded(mode, k, 4), folded(mode, k, 3), 0.0);
+            assert_near(t.lookup(centre, wrap), expected);
+            // On a texel boundary (halfway between centres k − 1 and k), a
+            // quarter past it: weights ¾ and ¼ of the two folded texels.
+            let at = Vec2::new((k as f32 + 0.25) / 4.0, (k as f32 + 0.25) / 3.0);
+            let mix = |n| 0.25 * folded(mode, k - 1, n) + 0.75 * folded(mode, k, n);
+            let expected = Vec3::new(mix(4), mix(3), 0.0);
+            assert_near(t.lookup(at, wrap), expected);
+            assert!(
+                (t.lookup_channel(at, 0, wrap) - expected.x).abs() < 1e-5,
+                "{mode:?} channel at {at}"
+            );
+        }
+    }
+    // Clamping makes the slope 0 beyond the edge; mirroring reverses it.
+    let beyond = Vec2::new(1.3, 0.5);
+    let clamp = t.gradient_channel(beyond, 0, TextureWrap::both(WrapMode::Clamp));
+    assert_eq!(clamp.x, 0.0);
+    let mirror = t.gradient_channel(beyond, 0, TextureWrap::both(WrapMode::Mirror));
+    let repeat = t.gradient_channel(Vec2::new(0.7, 0.5), 0, TextureWrap::REPEAT);
+    assert!((mirror.x + repeat.x).abs() < 1e-4, "{mirror} vs {repeat}");
 }

@@ -138,6 +138,7 @@ pub fn ball_under_the_sky() -> Scene {
             center: Vec3::new(0.0, 1.0, 0.0),
             radius: 1.0,
             material: 1,
+            inward: false,
             loc: SourceLoc::default(),
         }],
         materials: vec![

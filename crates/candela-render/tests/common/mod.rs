@@ -102,6 +102,7 @@ pub fn furnace_with_glass_ball(albedo: f32, le: f32) -> SceneDesc {
         center: Vec3::new(0.0, 0.0, -0.55),
         radius: 0.35,
         material: desc.materials.len() - 1,
+        inward: false,
         loc: SourceLoc::default(),
     });
     desc
@@ -119,6 +120,7 @@ pub fn analytic_sphere() -> SceneDesc {
             center: Vec3::ZERO,
             radius: 1.0,
             material: 0,
+            inward: false,
             loc: SourceLoc::default(),
         }],
         materials: vec![material(
@@ -298,6 +300,7 @@ pub fn glass_room() -> SceneDesc {
                 center: Vec3::new(0.45, -0.55, -2.3),
                 radius: 0.45,
                 material: 1,
+                inward: false,
                 loc: SourceLoc::default(),
             },
             SphereDesc {
@@ -306,6 +309,7 @@ pub fn glass_room() -> SceneDesc {
                 center: Vec3::new(-0.6, -0.65, -2.8),
                 radius: 0.35,
                 material: 3,
+                inward: false,
                 loc: SourceLoc::default(),
             },
         ],

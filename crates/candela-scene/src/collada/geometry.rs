@@ -148,6 +148,7 @@ fn read_sphere(
         radius: r * scale,
         material,
         axes: SphereDesc::Y_POLE,
+        inward: false,
         loc: ctx.loc(sphere),
     })
 }

@@ -304,6 +304,10 @@ pub enum BsdfDesc {
     },
     /// Black: absorbs everything (the BSDF of a pure emitter).
     Black,
+    /// Invisible (Mitsuba's `null`, which bounds a medium or carries an
+    /// emitter): every ray, shadow rays too, passes straight through. The
+    /// material's emission is still seen, on its front side.
+    Null,
     /// The glTF 2.0 metallic-roughness model (Lambert base, GGX specular
     /// with Schlick Fresnel, mixed by metalness) with
     /// `KHR_materials_transmission`, `KHR_materials_ior` and

@@ -32,7 +32,9 @@ pub use material::{
     PrincipledParameters, Sides, TextureSlot, TextureSlots,
 };
 pub use perturbation::{AwayFromViewer, PerturbationRules, TangentFrame};
-pub use texture::{ColorSpace, TextureFilter, TextureRef, TextureSource, UvTransform};
+pub use texture::{
+    ColorSpace, TextureFilter, TextureRef, TextureSource, TextureWrap, UvTransform, WrapMode,
+};
 
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use std::path::PathBuf;
@@ -195,6 +197,10 @@ pub struct SphereDesc {
     /// (dp/du) follow them. [`SphereDesc::Y_POLE`] unless the format says
     /// otherwise (Mitsuba: the shape's `to_world` rotation).
     pub axes: Mat3,
+    /// Its normals point inward (Mitsuba's `flip_normals`): its front side,
+    /// where a one-sided BSDF scatters and its material's emission leaves,
+    /// is the inside, and a dielectric's inside is the outside.
+    pub inward: bool,
     /// Where the sphere was instanced.
     pub loc: SourceLoc,
 }

@@ -6,8 +6,9 @@
 //! every kind of texture and the uv transform through the same type.
 //!
 //! UV convention (every loader converts to it): `u` runs left to right
-//! across an image, `v` bottom to top (an image's top row is at `v = 1`),
-//! and textures tile the plane with period 1 in both.
+//! across an image, `v` bottom to top (an image's top row is at `v = 1`).
+//! Outside [0, 1) an image repeats, mirrors or clamps per axis
+//! ([`TextureWrap`]); procedural patterns tile the plane with period 1.
 //!
 //! Vertex colours: [`TextureSource::VertexColor`] reads the mesh's
 //! per-vertex colour ([`crate::MeshDesc::colors`]) interpolated at the hit,
@@ -89,6 +90,61 @@ pub enum TextureFilter {
     Nearest,
 }
 
+/// How an image is addressed beyond its edge along one axis (Mitsuba's
+/// `wrap_mode`, glTF's `wrapS`/`wrapT`). Applied to whole texel indices,
+/// after the uv transform: each of a bilinear lookup's four texels is
+/// wrapped on its own, as Mitsuba's and glTF's samplers do.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum WrapMode {
+    /// The image tiles the axis with period 1.
+    #[default]
+    Repeat,
+    /// Every second tile is the image mirrored: period 2, texel `-1` reads
+    /// texel `0`, texel `n` reads `n - 1`.
+    Mirror,
+    /// The edge texels extend outward.
+    Clamp,
+}
+
+impl WrapMode {
+    /// The texel, in `0..n`, that index `i` of an axis of `n` texels reads.
+    #[inline]
+    pub fn texel_index(self, i: i64, n: i64) -> i64 {
+        match self {
+            WrapMode::Repeat => i.rem_euclid(n),
+            WrapMode::Mirror => {
+                let k = i.rem_euclid(2 * n);
+                if k < n {
+                    k
+                } else {
+                    2 * n - 1 - k
+                }
+            }
+            WrapMode::Clamp => i.clamp(0, n - 1),
+        }
+    }
+}
+
+/// An image's [`WrapMode`] along u and along v (glTF names one per axis;
+/// Mitsuba one for both).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct TextureWrap {
+    /// Along u (image columns).
+    pub u: WrapMode,
+    /// Along v (image rows).
+    pub v: WrapMode,
+}
+
+impl TextureWrap {
+    /// Repeat along both axes: the image tiles the plane.
+    pub const REPEAT: Self = Self::both(WrapMode::Repeat);
+
+    /// `mode` along both axes.
+    pub const fn both(mode: WrapMode) -> Self {
+        Self { u: mode, v: mode }
+    }
+}
+
 /// An affine map from the surface's uv to the texture's: the texture is
 /// read at `matrix · uv` (glTF's `KHR_texture_transform`, Mitsuba's
 /// `to_uv`). The identity reads at the surface's own uv.
@@ -153,6 +209,8 @@ pub struct TextureRef {
     pub channel: Option<u8>,
     /// How an image is read between texel centres.
     pub filter: TextureFilter,
+    /// How an image is addressed beyond its edges.
+    pub wrap: TextureWrap,
     /// Applied to the surface's uv before the lookup.
     pub uv: UvTransform,
     /// Whether every value read is multiplied by the surface's vertex
@@ -161,8 +219,8 @@ pub struct TextureRef {
 }
 
 impl TextureRef {
-    /// The image at `path`, read in `color_space`, unscaled, bilinear, at
-    /// the surface's own uv.
+    /// The image at `path`, read in `color_space`, unscaled, bilinear,
+    /// repeating, at the surface's own uv.
     pub fn new(path: impl Into<PathBuf>, color_space: ColorSpace) -> Self {
         Self::of(TextureSource::Image(path.into()), color_space)
     }
@@ -188,6 +246,7 @@ impl TextureRef {
             scale: 1.0,
             channel: None,
             filter: TextureFilter::default(),
+            wrap: TextureWrap::REPEAT,
             uv: UvTransform::IDENTITY,
             times_vertex_color: false,
         }
@@ -224,6 +283,33 @@ mod tests {
         // The cell [0, ½)² is color0's, closed at 0 and open at ½.
         assert!(TextureSource::checker_cell_is_even(Vec2::ZERO));
         assert!(!TextureSource::checker_cell_is_even(Vec2::new(0.5, 0.0)));
+    }
+
+    #[test]
+    fn wrap_modes_fold_indices_as_their_formulas_say() {
+        let n = 4;
+        // Indices -9..=12 against the closed forms, written out per mode.
+        for i in -9i64..=12 {
+            let repeat = ((i % n) + n) % n;
+            // Mirror: the tile index t = ⌊i / n⌋ is even (as is) or odd
+            // (reversed).
+            let t = i.div_euclid(n);
+            let mirror = if t % 2 == 0 { repeat } else { n - 1 - repeat };
+            let clamp = i.max(0).min(n - 1);
+            assert_eq!(WrapMode::Repeat.texel_index(i, n), repeat, "repeat {i}");
+            assert_eq!(WrapMode::Mirror.texel_index(i, n), mirror, "mirror {i}");
+            assert_eq!(WrapMode::Clamp.texel_index(i, n), clamp, "clamp {i}");
+        }
+        // At the edges: mirror reads the edge texel twice, clamp forever.
+        assert_eq!(WrapMode::Mirror.texel_index(-1, n), 0);
+        assert_eq!(WrapMode::Mirror.texel_index(n, n), n - 1);
+        assert_eq!(WrapMode::Mirror.texel_index(2 * n, n), 0);
+        assert_eq!(WrapMode::Repeat.texel_index(-1, n), n - 1);
+        // One texel: every mode reads it.
+        for mode in [WrapMode::Repeat, WrapMode::Mirror, WrapMode::Clamp] {
+            assert_eq!(mode.texel_index(-7, 1), 0);
+            assert_eq!(mode.texel_index(5, 1), 0);
+        }
     }
 
     #[test]

@@ -2,12 +2,13 @@
 //! image stored inside the glTF (a `data:` URI or a `.glb` buffer view) is
 //! written once to a content-addressed file in the system's temporary
 //! directory (`candela-gltf-images/<hash>.<ext>`) and referenced from there;
-//! external images are referenced beside the scene as they are.
+//! external images are referenced beside the scene as they are. The
+//! texture's sampler gives its wrap mode per axis (`wrapS`, `wrapT`).
 
 use super::accessors::Buffers;
 use super::buffers::{file_path, read_uri};
 use super::Ctx;
-use crate::desc::{ColorSpace, TextureRef};
+use crate::desc::{ColorSpace, TextureRef, TextureWrap, WrapMode};
 use crate::error::{ErrorKind, LoadError};
 use std::path::PathBuf;
 
@@ -51,7 +52,25 @@ pub(super) fn texture_ref(
             cache_file(ctx, &at, bytes, Some(mime_type))?
         }
     };
-    Ok(Some(TextureRef::new(path, space)))
+    let mut t = TextureRef::new(path, space);
+    let sampler = tex.sampler();
+    t.wrap = TextureWrap {
+        u: wrap_mode(sampler.wrap_s()),
+        v: wrap_mode(sampler.wrap_t()),
+    };
+    Ok(Some(t))
+}
+
+/// A sampler's `wrapS` or `wrapT`. glTF's v runs down the image and
+/// Candela's up, but every mode is symmetric under that flip (texel `j`
+/// from the top is `n − 1 − j` from the bottom, and the modes fold both
+/// alike), so the axis keeps its mode.
+fn wrap_mode(mode: gltf::texture::WrappingMode) -> WrapMode {
+    match mode {
+        gltf::texture::WrappingMode::Repeat => WrapMode::Repeat,
+        gltf::texture::WrappingMode::MirroredRepeat => WrapMode::Mirror,
+        gltf::texture::WrappingMode::ClampToEdge => WrapMode::Clamp,
+    }
 }
 
 /// Writes embedded image bytes to the temporary cache (unless a file of

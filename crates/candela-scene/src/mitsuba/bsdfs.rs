@@ -13,7 +13,11 @@
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot, or a constant opacity (a colour's luminance) |
 //! | `principled` | `Principled` (`principled.rs`: every parameter; textures on base_color, roughness, metallic) |
 //!
-//! Mitsuba BSDFs Candela lacks (`principledthin`, `blendbsdf`, `null`, ...) are
+//! `null` is [`BsdfDesc::Null`]: rays pass through; an emitter on the shape
+//! is still seen on its front side, as Mitsuba's `volpath` and `direct`
+//! show it.
+//!
+//! Mitsuba BSDFs Candela lacks (`principledthin`, `blendbsdf`, ...) are
 //! replaced by the closest one and reported once.
 //!
 //! Sides: Mitsuba 3 evaluates every BSDF but the ones that transmit as
@@ -163,14 +167,7 @@ impl Builder {
                 set(&mut textures, TextureSlot::Color, tex);
                 BsdfDesc::Diffuse { albedo }
             }
-            "null" => {
-                self.warn(
-                    doc,
-                    node,
-                    "BSDF \"null\" (invisible surface) rendered as black",
-                )?;
-                BsdfDesc::Black
-            }
+            "null" => BsdfDesc::Null,
             "measured" | "hair" | "polarizer" | "retarder" | "circular" => {
                 self.warn(
                     doc,

@@ -9,9 +9,7 @@ use super::emitters::area_radiance;
 use super::transform::to_world;
 use super::values::{boolean, float, integer, point};
 use super::{tessellate, Builder};
-use crate::desc::{
-    BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, Sides, SphereDesc, TextureSlots,
-};
+use crate::desc::{BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, SphereDesc};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4, Vec3};
 
@@ -130,10 +128,7 @@ impl Builder {
                 format!("sphere radius {radius} is not positive"),
             ));
         }
-        let mut material = self.shape_material(doc, node)?;
-        if boolean(doc, node, "flip_normals", false)? {
-            material = self.inside_out(doc, node, material)?;
-        }
+        let material = self.shape_material(doc, node)?;
         let transform = checked_transform(doc, node)?;
         let Some((center, radius, rotation)) = place_sphere(transform, center, radius) else {
             return Err(doc.err(
@@ -149,6 +144,8 @@ impl Builder {
             material,
             // Mitsuba's sphere: the pole along its local +z, u around it.
             axes: rotation,
+            // flip_normals turns its front (BSDF, emission) to the inside.
+            inward: boolean(doc, node, "flip_normals", false)?,
             loc: doc.loc(node),
         };
         match group {
@@ -283,70 +280,6 @@ impl Builder {
         Ok(self.push_material(MaterialDesc {
             emission,
             ..material
-        }))
-    }
-
-    /// The material of a sphere whose normals `flip_normals` turns
-    /// inward, as one on Candela's outward-facing sphere: what Mitsuba
-    /// shows in front of the flipped normal Candela shows behind its own,
-    /// so the sides swap (a one-sided BSDF becomes black outside and the
-    /// BSDF, turned over, inside). A two-sided BSDF needs nothing, except a
-    /// dielectric (inside and outside would swap: reported, kept), and
-    /// emission stays outward (reported).
-    fn inside_out(&mut self, doc: &Doc, node: XNode, i: usize) -> Result<usize, LoadError> {
-        let m = self.scene.materials[i].clone();
-        if m.emission.is_some() {
-            self.warn(
-                doc,
-                node,
-                "flip_normals on an emitting sphere: it still emits outward",
-            )?;
-        }
-        let (front, back) = match m.sides {
-            Sides::Both => {
-                if matches!(
-                    m.bsdf,
-                    BsdfDesc::Glass { .. }
-                        | BsdfDesc::RoughDielectric { .. }
-                        | BsdfDesc::ThinDielectric { .. }
-                        | BsdfDesc::Refraction { .. }
-                ) {
-                    self.warn(
-                        doc,
-                        node,
-                        "flip_normals on a dielectric sphere is not supported (inside and outside kept)",
-                    )?;
-                }
-                return Ok(i);
-            }
-            Sides::Front => {
-                // Cut-outs stay with the surface, on both sides.
-                let cutout = TextureSlots {
-                    opacity: m.textures.opacity.clone(),
-                    opacity_cutoff: m.textures.opacity_cutoff,
-                    opacity_constant: m.textures.opacity_constant,
-                    ..TextureSlots::default()
-                };
-                let black = (BsdfDesc::Black, cutout);
-                (black, (m.bsdf.clone(), m.textures.clone()))
-            }
-            Sides::Back(ref b) => (
-                (b.bsdf.clone(), b.textures.clone()),
-                (m.bsdf.clone(), m.textures.clone()),
-            ),
-        };
-        let back = MaterialDesc {
-            bsdf: back.0,
-            textures: back.1,
-            emission: None,
-            sides: Sides::Both,
-            ..m.clone()
-        };
-        Ok(self.push_material(MaterialDesc {
-            bsdf: front.0,
-            textures: front.1,
-            sides: Sides::Back(Box::new(back)),
-            ..m
         }))
     }
 

@@ -2,7 +2,7 @@
 //!
 //! | Mitsuba | Candela description |
 //! |---|---|
-//! | `bitmap` | an image [`TextureRef`]: `raw` (linear) or the file's colour space, `filter_type` (`bilinear`, `nearest`), `to_uv`; `wrap_mode` other than `repeat` is reported (read as repeat) |
+//! | `bitmap` | an image [`TextureRef`]: `raw` (linear) or the file's colour space, `filter_type` (`bilinear`, `nearest`), `wrap_mode` ([`WrapMode`]: `repeat`, `mirror`, `clamp`), `to_uv` |
 //! | `checkerboard` | [`TextureSource::Checkerboard`] of `color0`/`color1` (constants; textures in them are reported), `to_uv` |
 //! | `mesh_attribute` | `name` `vertex_color`: [`TextureSource::VertexColor`] (a PLY's `red green blue`, a `serialized` mesh's colours; white on a mesh without them), `scale`; other attributes are reported, grey 0.5 |
 //! | `volume` | reported, grey 0.5 |
@@ -25,7 +25,10 @@ use super::doc::{Doc, XNode};
 use super::transform::transform;
 use super::values::{boolean, float, string};
 use super::Builder;
-use crate::desc::{ColorSpace, TextureFilter, TextureRef, TextureSlot, TextureSource, UvTransform};
+use crate::desc::{
+    ColorSpace, TextureFilter, TextureRef, TextureSlot, TextureSource, TextureWrap, UvTransform,
+    WrapMode,
+};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Affine2, Mat4, Vec2, Vec3};
 
@@ -52,30 +55,7 @@ impl Builder {
                 };
                 let mut t = TextureRef::new(path, color_space);
                 t.filter = filter(doc, node)?;
-                if let Some(wrap) = string(doc, node, "wrap_mode")? {
-                    match wrap.as_str() {
-                        "repeat" => {}
-                        "mirror" | "clamp" => {
-                            let p = doc.prop(node, "wrap_mode")?.unwrap_or(node);
-                            self.warn(
-                                doc,
-                                p,
-                                format!(
-                                    "bitmap wrap_mode \"{wrap}\" is not supported (repeat used)"
-                                ),
-                            )?;
-                        }
-                        other => {
-                            return Err(doc.err(
-                                node,
-                                ErrorKind::BadValue,
-                                format!(
-                                "unknown wrap_mode \"{other}\" (expected repeat, mirror or clamp)"
-                            ),
-                            ))
-                        }
-                    }
-                }
+                t.wrap = TextureWrap::both(wrap_mode(doc, node)?);
                 t
             }
             "checkerboard" => {
@@ -141,6 +121,22 @@ pub(super) fn for_slot(slot: TextureSlot, mut texture: TextureRef) -> TextureRef
         std::mem::swap(color0, color1);
     }
     texture
+}
+
+/// `wrap_mode`: repeat (the default), mirror or clamp, along both axes.
+/// Mitsuba's v runs down the image and Candela's up; each mode folds texel
+/// indices symmetrically under that flip, so it carries over as it is.
+fn wrap_mode(doc: &Doc, node: XNode) -> Result<WrapMode, LoadError> {
+    match string(doc, node, "wrap_mode")?.as_deref() {
+        None | Some("repeat") => Ok(WrapMode::Repeat),
+        Some("mirror") => Ok(WrapMode::Mirror),
+        Some("clamp") => Ok(WrapMode::Clamp),
+        Some(other) => Err(doc.err(
+            node,
+            ErrorKind::BadValue,
+            format!("unknown wrap_mode \"{other}\" (expected repeat, mirror or clamp)"),
+        )),
+    }
 }
 
 /// `filter_type`: bilinear (the default) or nearest.

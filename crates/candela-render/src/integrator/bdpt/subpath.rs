@@ -159,7 +159,7 @@ impl Walk {
         let mut eta_scale = 1.0f32;
         let mut bounces = 0u32;
         while path.len() < self.max_vertices {
-            let Some(hit) = scene.intersect_visible(&ray, &mut ctx.rays.traversal) else {
+            let Some(hit) = scene.intersect_scattering(&ray, &mut ctx.rays.traversal) else {
                 if self.mode == TransportMode::Radiance
                     && scene.lights.infinite_lights().next().is_some()
                 {

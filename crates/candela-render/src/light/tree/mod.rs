@@ -181,6 +181,6 @@ fn light_bounds(light: &Light, phi: f32) -> Option<LightBounds> {
             ];
             LightBounds::flat(&corners, *normal, phi)
         }
-        AreaShape::Sphere { center, radius } => LightBounds::sphere(*center, *radius, phi),
+        AreaShape::Sphere { center, radius, .. } => LightBounds::sphere(*center, *radius, phi),
     })
 }

@@ -33,6 +33,7 @@ fn scattered_lights(count: usize, seed: u64) -> Vec<Light> {
                     shape: AreaShape::Sphere {
                         center: c,
                         radius: rng.range(0.05, 0.3),
+                        inward: false,
                     },
                     radiance: Vec3::splat(radiance),
                     textured: None,
