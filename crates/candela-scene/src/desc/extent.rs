@@ -164,6 +164,7 @@ mod tests {
                 radius,
                 material: 0,
                 axes: SphereDesc::Y_POLE,
+                inward: false,
                 loc,
             }],
             ..SceneDesc::default()
