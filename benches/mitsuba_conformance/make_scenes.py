@@ -929,6 +929,64 @@ for i, (mode, filt) in enumerate(WRAPS):
     text += textured_panel(f"t{i}", xs[i], wrapped(mode, filt))
 add("tex-wrap", text, {f"{m} {f}": tpanel_rect(xs[i]) for i, (m, f) in enumerate(WRAPS)})
 
+# Textures on analytic spheres: Mitsuba's sphere puts its pole on local +z
+# (here toward the camera unless turned) with u around it from +x, so the
+# parameterisation, the seam and the poles all show.
+TSPHERES = [
+    ("bitmap, pole to the camera", BITMAP, ""),
+    ("bitmap, turned: pole up", BITMAP, '<rotate x="1" angle="-90"/>\n            <rotate y="1" angle="30"/>'),
+    ("checkerboard to_uv, pole to the camera", CHECKER_UV, ""),
+    ("checkerboard to_uv, turned", CHECKER_UV, '<rotate x="1" angle="-60"/>\n            <rotate z="1" angle="40"/>'),
+]
+
+
+def textured_sphere(id_, x, bsdf, turn):
+    return f"""    <shape type="sphere" id="{id_}">
+        <transform name="to_world">
+            {turn}
+            <scale value="0.3"/>
+            <translate x="{x}" y="-0.45" z="0"/>
+        </transform>
+{ind(bsdf)}
+    </shape>
+"""
+
+
+def tsphere_rect(x):
+    px, py = project((x, -0.45, 0))
+    s = (W / 2) / math.tan(math.radians(FOV_X / 2)) / CAM_Z
+    return [int(px - 0.22 * s), int(py - 0.22 * s), int(px + 0.22 * s), int(py + 0.22 * s)]
+
+
+text = header("Bitmap and checkerboard textures on analytic spheres, pole toward the camera and turned.") + cornell()
+xs = [-0.7, -0.23, 0.23, 0.7]
+for i, (label, b, turn) in enumerate(TSPHERES):
+    text += textured_sphere(f"s{i}", xs[i], b, turn)
+add("tex-sphere", text, {label: tsphere_rect(xs[i]) for i, (label, _, _) in enumerate(TSPHERES)})
+
+# Shading frames on analytic spheres: a normal map and a bump map (both
+# read dp/du and dp/dv), an anisotropic rough conductor (its tangent is
+# dp/du) and a sphere lamp with a bitmap radiance, all turned.
+ANISO = """<bsdf type="roughconductor">
+    <string name="material" value="Au"/>
+    <float name="alpha_u" value="0.05"/>
+    <float name="alpha_v" value="0.4"/>
+</bsdf>"""
+TEX_LAMP = """<bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.2, 0.2"/></bsdf>
+<emitter type="area">
+    <texture type="bitmap" name="radiance">
+        <string name="filename" value="textures/quadrants.png"/>
+        <string name="filter_type" value="nearest"/>
+    </texture>
+</emitter>"""
+TURN = '<rotate x="1" angle="-70"/>\n            <rotate y="1" angle="25"/>'
+SPHERE_MAPS = [("normalmap", NORMALMAP), ("bumpmap", BUMPMAP), ("anisotropic roughconductor", ANISO),
+               ("bitmap area emitter", TEX_LAMP)]
+text = header("Normal map, bump map, anisotropic conductor and a bitmap lamp on turned analytic spheres.") + cornell()
+for i, (label, b) in enumerate(SPHERE_MAPS):
+    text += textured_sphere(f"s{i}", xs[i], b, TURN)
+add("tex-sphere-maps", text, {label: tsphere_rect(xs[i]) for i, (label, _) in enumerate(SPHERE_MAPS)})
+
 # Null surfaces and flip_normals on spheres, under volpath (Mitsuba's path
 # integrator shows a null emitter black and stops shadow rays at null
 # surfaces; volpath passes them both ways). max_depth 32 so that whether a

@@ -161,7 +161,7 @@ fn anisotropic_roughness_keeps_both_alphas() {
 }
 
 #[test]
-fn a_spheres_axes_are_its_to_world_rotation_with_the_pole_on_local_z() {
+fn a_spheres_axes_are_its_to_world_rotation_with_the_pole_on_local_z_reversed_for_v() {
     let l = load_shapes(
         "mitsuba-sphere-axes",
         r#"
@@ -170,12 +170,30 @@ fn a_spheres_axes_are_its_to_world_rotation_with_the_pole_on_local_z() {
         <rotate x="1" angle="90"/><scale value="2"/><translate x="1"/></transform></shape>"#,
     );
     let s = &l.scene.spheres;
-    assert_eq!(s[0].axes, Mat3::IDENTITY);
-    // Rotating +90° about x takes local +z to world −y and +y to +z.
+    let flip_z = Mat3::from_diagonal(Vec3::new(1.0, 1.0, -1.0));
+    assert_eq!(s[0].axes, flip_z);
+    // Rotating +90° about x takes local +z to world −y and +y to +z; the
+    // parameterisation's pole axis is the reverse of local +z.
     let a = s[1].axes;
     let close = |a: Vec3, b: Vec3| (a - b).abs().max_element() < 1e-6;
-    assert!(close(a.z_axis, -Vec3::Y) && close(a.y_axis, Vec3::Z) && close(a.x_axis, Vec3::X));
+    assert!(close(a.z_axis, Vec3::Y) && close(a.y_axis, Vec3::Z) && close(a.x_axis, Vec3::X));
     assert!((s[1].radius - 2.0).abs() < 1e-6);
+    // In those axes v = θ/π from the pole is 1 − Mitsuba's v (θ from local
+    // +z), the flip every Mitsuba uv gets into Candela's image rows, and u
+    // = φ/2π is Mitsuba's: a point at Mitsuba's (u, v) = (0.125, 0.25).
+    let (theta, phi) = (0.25 * std::f32::consts::PI, 0.125 * std::f32::consts::TAU);
+    let local = Vec3::new(
+        theta.sin() * phi.cos(),
+        theta.sin() * phi.sin(),
+        theta.cos(),
+    );
+    let q = s[0].axes.transpose() * local;
+    let v = q.z.acos() / std::f32::consts::PI;
+    let u = q.y.atan2(q.x) / std::f32::consts::TAU;
+    assert!(
+        (u - 0.125).abs() < 1e-6 && (v - 0.75).abs() < 1e-6,
+        "u {u} v {v}"
+    );
     // Candela's own convention differs: the pole on +Y.
     assert_eq!(SphereDesc::Y_POLE.z_axis, Vec3::Y);
 }

@@ -1,7 +1,7 @@
 //! The Mitsuba loader's textures read into the description: bitmaps with
 //! their filter and `to_uv`, checkerboards (as a colour and as one value),
-//! wrap modes, and what is still unsupported (a mesh attribute other than
-//! the vertex colours) reported once by name.
+//! wrap modes, an area emitter's radiance, and what is still unsupported
+//! (a mesh attribute other than the vertex colours) reported once by name.
 
 use candela_scene::{
     load, LoadOptions, Loaded, MaterialDesc, TextureFilter, TextureRef, TextureSlot, TextureSource,
@@ -176,4 +176,28 @@ fn wrap_modes_are_kept_for_both_axes_and_unsupported_types_reported_once_by_name
         err.to_string().contains("unknown wrap_mode \"wrap\""),
         "{err}"
     );
+}
+
+#[test]
+fn a_textured_area_emitter_puts_its_radiance_in_the_emission_slot() {
+    let l = load_scene(
+        "mitsuba-tex-emitter",
+        r#"<scene version="3.0.0">
+    <shape type="sphere" id="lamp">
+        <emitter type="area">
+            <texture type="bitmap" name="radiance">
+                <string name="filename" value="t.png"/>
+                <string name="filter_type" value="nearest"/>
+            </texture>
+        </emitter>
+    </shape>
+</scene>"#,
+    );
+    // Read, not replaced by a constant (which was reported before).
+    assert!(l.report.is_empty(), "{}", l.report);
+    let m = &l.scene.materials[l.scene.spheres[0].material];
+    assert!(m.emission.is_some(), "the material emits");
+    let t = slot(m, TextureSlot::Emission);
+    assert!(matches!(&t.source, TextureSource::Image(p) if p.ends_with("t.png")));
+    assert_eq!(t.filter, TextureFilter::Nearest);
 }

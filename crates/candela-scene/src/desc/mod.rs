@@ -195,7 +195,8 @@ pub struct SphereDesc {
     /// columns x, y, z): v = θ/π from the pole +z, u = φ/2π around it from
     /// +x toward +y. Texture lookups and the tangent of anisotropic BSDFs
     /// (dp/du) follow them. [`SphereDesc::Y_POLE`] unless the format says
-    /// otherwise (Mitsuba: the shape's `to_world` rotation).
+    /// otherwise (Mitsuba: the shape's `to_world` rotation with z reversed,
+    /// since its v runs the other way; a reflection is orthonormal too).
     pub axes: Mat3,
     /// Its normals point inward (Mitsuba's `flip_normals`): its front side,
     /// where a one-sided BSDF scatters and its material's emission leaves,

@@ -1,6 +1,6 @@
-//! Emitters: `area` (inside a shape: its radiance becomes the material's
-//! emission), `point`, `spot`, `directional`, `envmap` and `constant` (the
-//! scene's [`EnvironmentDesc`]).
+//! Emitters: `area` (inside a shape: its radiance, a constant or a
+//! texture, becomes the material's emission), `point`, `spot`,
+//! `directional`, `envmap` and `constant` (the scene's [`EnvironmentDesc`]).
 //!
 //! Mitsuba's spot light fades smoothly from `beam_width` to
 //! `cutoff_angle`; Candela's is a hard cone of half-angle `cutoff_angle`
@@ -10,12 +10,18 @@ use super::doc::{Doc, XNode};
 use super::transform::to_world;
 use super::values::{float, point};
 use super::Builder;
-use crate::desc::{EnvironmentDesc, EnvironmentLookup, LightDesc, LightKind, SpotEdge};
+use crate::desc::{EnvironmentDesc, EnvironmentLookup, LightDesc, LightKind, SpotEdge, TextureRef};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4, Vec3};
 
-/// The radiance of a shape's `<emitter type="area">`.
-pub(super) fn area_radiance(b: &mut Builder, doc: &Doc, node: XNode) -> Result<Vec3, LoadError> {
+/// The radiance of a shape's `<emitter type="area">`: a constant, or a
+/// texture for the material's emission slot (which the renderer reads
+/// wherever the lamp is hit or sampled).
+pub(super) fn area_radiance(
+    b: &mut Builder,
+    doc: &Doc,
+    node: XNode,
+) -> Result<(Vec3, Option<TextureRef>), LoadError> {
     let kind = doc.plugin_type(node)?;
     if kind != "area" {
         return Err(doc.err(
@@ -24,7 +30,7 @@ pub(super) fn area_radiance(b: &mut Builder, doc: &Doc, node: XNode) -> Result<V
             format!("a shape's emitter must be \"area\", not \"{kind}\""),
         ));
     }
-    b.constant(doc, node, "radiance", Vec3::ONE)
+    b.color(doc, node, "radiance", Vec3::ONE)
 }
 
 /// A top-level `<emitter>`.

@@ -4,12 +4,13 @@
 //! shape's `to_world` becomes its instance transform; a sphere's is applied
 //! to its centre and radius (so it must scale uniformly).
 
+use super::bsdfs::set;
 use super::doc::{elements, Doc, XNode};
 use super::emitters::area_radiance;
 use super::transform::to_world;
 use super::values::{boolean, float, integer, point};
 use super::{tessellate, Builder};
-use crate::desc::{BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, SphereDesc};
+use crate::desc::{BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, SphereDesc, TextureSlot};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4, Vec3};
 
@@ -142,8 +143,11 @@ impl Builder {
             center,
             radius,
             material,
-            // Mitsuba's sphere: the pole along its local +z, u around it.
-            axes: rotation,
+            // Mitsuba's sphere: v = θ/π from the pole on its local +z, u
+            // around it from +x toward +y. Candela's v is 1 − Mitsuba's (see
+            // `image_rows_from_the_top`), which is θ measured from −z with
+            // u unchanged: the pole axis reversed.
+            axes: rotation * Mat3::from_diagonal(Vec3::new(1.0, 1.0, -1.0)),
             // flip_normals turns its front (BSDF, emission) to the inside.
             inward: boolean(doc, node, "flip_normals", false)?,
             loc: doc.loc(node),
@@ -240,7 +244,7 @@ impl Builder {
     /// reflect nothing unless the scene says so (measured: Mitsuba renders a
     /// lamp without a BSDF exactly as one with a black `diffuse`).
     fn shape_material(&mut self, doc: &Doc, node: XNode) -> Result<usize, LoadError> {
-        let (mut inline, mut named, mut emission) = (None, None, None);
+        let (mut inline, mut named, mut emission, mut emission_texture) = (None, None, None, None);
         for c in elements(node) {
             match c.tag_name().name() {
                 "bsdf" => inline = Some(self.bsdf(doc, c)?),
@@ -248,7 +252,11 @@ impl Builder {
                     let id = doc.required(c, "id")?;
                     named = Some((self.named_bsdf(doc, c, &id)?, id));
                 }
-                "emitter" => emission = Some(area_radiance(self, doc, c)?),
+                "emitter" => {
+                    let (radiance, texture) = area_radiance(self, doc, c)?;
+                    emission = Some(radiance);
+                    emission_texture = texture;
+                }
                 _ => {}
             }
         }
@@ -277,10 +285,16 @@ impl Builder {
                 ..Self::default_diffuse()
             },
         };
-        Ok(self.push_material(MaterialDesc {
+        let mut material = MaterialDesc {
             emission,
             ..material
-        }))
+        };
+        set(
+            &mut material.textures,
+            TextureSlot::Emission,
+            emission_texture,
+        );
+        Ok(self.push_material(material))
     }
 
     fn push_material(&mut self, m: MaterialDesc) -> usize {
