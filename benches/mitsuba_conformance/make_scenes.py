@@ -904,6 +904,54 @@ emitter_scene("emit-area", "Area emitters on a sphere and on a rectangle (one-si
     </shape>
 """)
 
+# --- hide_emitters and spectra ---------------------------------------------
+
+# The integrator's hide_emitters (a lamp and the sky seen directly are
+# black; in the mirror they show), with colours given as spectra: light in
+# an emitter (equal-energy white is not RGB white), reflectances under D65,
+# a conductor's eta and k.
+text = header("hide_emitters, with spectra for light, reflectances and a conductor's eta and k.",
+              lookat='origin="0, 0.35, 3.6" target="0, -0.2, 0" up="0, 1, 0"')
+text = text.replace('<integer name="max_depth" value="$max_depth"/>',
+                    '<integer name="max_depth" value="$max_depth"/>\n        <boolean name="hide_emitters" value="true"/>')
+text += """    <emitter type="constant">
+        <spectrum name="radiance" value="0.6"/>
+    </emitter>
+    <shape type="rectangle" id="floor">
+        <transform name="to_world">
+            <scale value="3"/>
+            <rotate x="1" angle="-90"/>
+            <translate y="-1"/>
+        </transform>
+        <bsdf type="diffuse">
+            <spectrum name="reflectance" value="400:0.2, 450:0.35, 500:0.6, 550:0.7, 600:0.55, 650:0.4, 700:0.3"/>
+        </bsdf>
+    </shape>
+    <shape type="sphere" id="lamp">
+        <point name="center" x="-0.7" y="-0.55" z="-0.3"/>
+        <float name="radius" value="0.3"/>
+        <emitter type="area">
+            <spectrum name="radiance" value="400:0, 500:8, 600:15.6, 700:18.4"/>
+        </emitter>
+    </shape>
+    <shape type="sphere" id="mirror">
+        <point name="center" x="0.05" y="-0.6" z="0.1"/>
+        <float name="radius" value="0.38"/>
+        <bsdf type="conductor">
+            <spectrum name="eta" value="400:1.2, 550:0.6, 700:0.2"/>
+            <spectrum name="k" value="400:2.0, 550:2.6, 700:3.8"/>
+        </bsdf>
+    </shape>
+    <shape type="sphere" id="ball">
+        <point name="center" x="0.75" y="-0.7" z="-0.1"/>
+        <float name="radius" value="0.3"/>
+        <bsdf type="diffuse">
+            <spectrum name="reflectance" value="400:0.05, 480:0.1, 520:0.5, 560:0.6, 620:0.2, 700:0.1"/>
+        </bsdf>
+    </shape>
+"""
+add("emit-hide-spectra", text, {"mirror": [60, 52, 74, 66], "ball": [86, 60, 98, 72], "lit floor": [10, 68, 50, 82]})
+
 # --- Wrap modes, null surfaces, flipped spheres -----------------------------
 
 # A 4x3 bitmap read at uv in [-1, 2]^2 (to_uv scale 3, shift -1): outside the
@@ -986,6 +1034,55 @@ text = header("Normal map, bump map, anisotropic conductor and a bitmap lamp on 
 for i, (label, b) in enumerate(SPHERE_MAPS):
     text += textured_sphere(f"s{i}", xs[i], b, TURN)
 add("tex-sphere-maps", text, {label: tsphere_rect(xs[i]) for i, (label, _) in enumerate(SPHERE_MAPS)})
+
+# Textures in the parameters of BSDFs other than diffuse: a checkerboard
+# roughness on a rough conductor, bitmaps in plastic's diffuse reflectance
+# (smooth and rough), and a principled BSDF with a bitmap base colour and a
+# checkerboard roughness and metallic.
+TEX_BSDFS = [
+    ("roughconductor, checkerboard alpha", """<bsdf type="roughconductor">
+    <string name="material" value="Al"/>
+    <texture type="checkerboard" name="alpha">
+        <float name="color0" value="0.05"/>
+        <float name="color1" value="0.5"/>
+        <transform name="to_uv"><scale x="2" y="3"/></transform>
+    </texture>
+</bsdf>"""),
+    ("plastic, bitmap", """<bsdf type="plastic">
+    <texture type="bitmap" name="diffuse_reflectance">
+        <string name="filename" value="textures/quadrants.png"/>
+        <string name="filter_type" value="nearest"/>
+    </texture>
+</bsdf>"""),
+    ("roughplastic ggx, bitmap", """<bsdf type="roughplastic">
+    <string name="distribution" value="ggx"/>
+    <float name="alpha" value="0.25"/>
+    <texture type="bitmap" name="diffuse_reflectance">
+        <string name="filename" value="textures/quadrants.png"/>
+        <string name="filter_type" value="nearest"/>
+    </texture>
+</bsdf>"""),
+    ("principled, textured", """<bsdf type="principled">
+    <texture type="bitmap" name="base_color">
+        <string name="filename" value="textures/quadrants.png"/>
+        <string name="filter_type" value="nearest"/>
+    </texture>
+    <texture type="checkerboard" name="roughness">
+        <float name="color0" value="0.15"/>
+        <float name="color1" value="0.6"/>
+        <transform name="to_uv"><scale x="2" y="2"/></transform>
+    </texture>
+    <texture type="checkerboard" name="metallic">
+        <float name="color0" value="0.0"/>
+        <float name="color1" value="0.8"/>
+        <transform name="to_uv"><scale x="1" y="3"/></transform>
+    </texture>
+</bsdf>"""),
+]
+text = header("Textures in the parameters of conductor, plastic and principled BSDFs.") + cornell()
+for i, (label, b) in enumerate(TEX_BSDFS):
+    text += textured_panel(f"t{i}", xs[i], b)
+add("tex-bsdfs", text, {label: tpanel_rect(xs[i]) for i, (label, _) in enumerate(TEX_BSDFS)})
 
 # Null surfaces and flip_normals on spheres, under volpath (Mitsuba's path
 # integrator shows a null emitter black and stops shadow rays at null

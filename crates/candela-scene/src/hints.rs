@@ -21,6 +21,9 @@ pub struct RenderHints {
     /// The pixel reconstruction filter (Mitsuba's `<rfilter>`, Gaussian by
     /// default there).
     pub filter: Option<FilterHint>,
+    /// Leave out emitters seen directly by the camera (Mitsuba's
+    /// `hide_emitters`).
+    pub hide_emitters: bool,
 }
 
 /// A pixel reconstruction filter as a scene describes it (Mitsuba 3's

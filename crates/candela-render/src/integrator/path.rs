@@ -52,6 +52,10 @@ pub struct PathSettings {
     pub roulette_from: Option<u32>,
     /// How each light sample chooses its light.
     pub light_selection: LightSelection,
+    /// Camera rays pass through emitting surfaces (Mitsuba's
+    /// `hide_emitters`; `bounces` then starts at 1, which hides the
+    /// environment seen directly).
+    pub hide_emitters: bool,
 }
 
 impl Default for PathSettings {
@@ -62,6 +66,7 @@ impl Default for PathSettings {
             light_samples: 1,
             roulette_from: Some(3),
             light_selection: LightSelection::default(),
+            hide_emitters: false,
         }
     }
 }
@@ -124,7 +129,9 @@ pub fn path_radiance<R: PathRecorder>(
                 });
             }
         }
-        if material.invisible {
+        // Emitters hidden from the camera are not there for camera rays.
+        let hidden = depth == 0 && settings.hide_emitters && material.emission.is_some();
+        if material.invisible || hidden {
             // An emitting null surface: its emission is in, and the path goes
             // on as if it were not there (`scene/visibility.rs`).
             crossed += 1;

@@ -118,6 +118,17 @@ pub struct IntegratorSettings {
         default_value_t = IntegratorSettings::default().roulette))]
     pub roulette: bool,
 
+    /// Hide emitters from the camera, as Mitsuba's `hide_emitters` does:
+    /// camera rays pass through emitting surfaces to what is behind them,
+    /// and the environment behind everything is black. Emitters still
+    /// light the scene and show in mirrors and through glass. Path tracing
+    /// only. `--hide-emitters` alone is `--hide-emitters true`.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", action = clap::ArgAction::Set,
+        num_args = 0..=1, default_missing_value = "true",
+        value_parser = clap::builder::BoolishValueParser::new(),
+        default_value_t = IntegratorSettings::default().hide_emitters))]
+    pub hide_emitters: bool,
+
     /// Largest radiance a camera sample may carry: brighter samples are
     /// scaled down to it, hue kept (pbrt's `maxcomponentvalue`). Removes
     /// fireflies at the cost of bias; off by default.
@@ -138,6 +149,7 @@ impl Default for IntegratorSettings {
             bounce_layers: None,
             technique_layers: false,
             roulette: true,
+            hide_emitters: false,
             clamp: None,
         }
     }
@@ -156,15 +168,22 @@ impl IntegratorSettings {
     /// Bounce counts whose light reaches the image.
     pub fn bounces(&self) -> RangeInclusive<u32> {
         let m = self.max_depth;
-        if let Some(k) = self.bounce {
-            return k..=k;
-        }
-        match self.estimator {
-            Estimator::Direct => 0..=m.min(1),
-            Estimator::Indirect => 2..=m,
-            Estimator::Path | Estimator::Normals if !self.accumulate => m..=m,
-            Estimator::Path | Estimator::Normals | Estimator::Light | Estimator::Bdpt => 0..=m,
-        }
+        let range = match (self.bounce, self.estimator) {
+            (Some(k), _) => k..=k,
+            (None, Estimator::Direct) => 0..=m.min(1),
+            (None, Estimator::Indirect) => 2..=m,
+            (None, Estimator::Path | Estimator::Normals) if !self.accumulate => m..=m,
+            (None, Estimator::Path | Estimator::Normals | Estimator::Light | Estimator::Bdpt) => {
+                0..=m
+            }
+        };
+        (*range.start()).max(self.first_bounce())..=*range.end()
+    }
+
+    /// The fewest bounces a path's light may have to reach the image: 1
+    /// when emitters are hidden from the camera, else 0.
+    pub fn first_bounce(&self) -> u32 {
+        u32::from(self.hide_emitters)
     }
 
     /// The bidirectional estimators' options (light tracing, BDPT).
@@ -184,6 +203,7 @@ impl IntegratorSettings {
             light_samples: self.light_samples,
             roulette_from: self.roulette.then_some(ROULETTE_FROM),
             light_selection: self.light_selection,
+            hide_emitters: self.hide_emitters,
         })
     }
 
@@ -223,6 +243,13 @@ impl IntegratorSettings {
         }
         if matches!(self.estimator, Estimator::Light | Estimator::Bdpt) {
             check(
+                !self.hide_emitters,
+                "hide_emitters",
+                "--hide-emitters",
+                true,
+                "only with the path tracer (a scene may ask for it: --hide-emitters false)",
+            )?;
+            check(
                 self.accumulate,
                 "accumulate",
                 "-o",
@@ -244,6 +271,15 @@ impl IntegratorSettings {
                 "--bounce-layers",
                 layers,
                 format_args!("not with --bounce {k}, which keeps one bounce count only"),
+            )?;
+        }
+        if let Some(k) = self.bounce {
+            check(
+                k >= self.first_bounce(),
+                "bounce",
+                "--bounce",
+                k,
+                "at least 1 with --hide-emitters (bounce 0 is the emitters it hides)",
             )?;
         }
         if let Some(c) = self.clamp {

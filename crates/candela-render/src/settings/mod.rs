@@ -123,6 +123,9 @@ fn hints_json(h: &RenderHints) -> Map<String, Value> {
     if let Some(f) = h.filter {
         m.insert("filter".into(), String::from(filter_of_hint(f)).into());
     }
+    if h.hide_emitters {
+        m.insert("hide_emitters".into(), true.into());
+    }
     m
 }
 

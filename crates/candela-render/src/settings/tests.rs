@@ -198,6 +198,7 @@ fn explicit_settings_beat_scene_hints_which_beat_defaults() {
         file_camera: true,
         clamp: Some(3.0),
         filter: Some(candela_scene::FilterHint::Tent { radius: 1.5 }),
+        hide_emitters: true,
     };
     let s = Settings::resolve(&hints, &changes(json!({"spp": 4, "camera": "cs184"}))).unwrap();
     assert_eq!(
@@ -210,6 +211,10 @@ fn explicit_settings_beat_scene_hints_which_beat_defaults() {
     assert_eq!(s.image.camera, crate::camera::framing::CameraMode::Cs184);
     assert_eq!(s.integrator.max_depth, 9);
     assert_eq!(s.integrator.clamp, Some(3.0));
+    assert!(s.integrator.hide_emitters);
+    assert_eq!(s.integrator.bounces(), 1..=9);
+    let shown = Settings::resolve(&hints, &changes(json!({"hide_emitters": false}))).unwrap();
+    assert_eq!(shown.integrator.bounces(), 0..=9);
     assert_eq!((s.image.width, s.image.height), (320, 200));
     assert_eq!(s.output, OutputSettings::default());
     assert_eq!(
@@ -260,6 +265,23 @@ fn a_bounce_beyond_the_depth_or_with_a_cs184_view_is_refused() {
         refused(json!({"bounce": -1})).split(':').next(),
         Some("setting `bounce` = -1")
     );
+}
+
+#[test]
+fn hidden_emitters_start_the_image_at_bounce_one_in_the_path_tracer_only() {
+    let s = Settings::from_json(&changes(json!({"hide_emitters": true}))).unwrap();
+    assert_eq!(s.integrator.bounces(), 1..=5);
+    assert!(s.integrator.path_settings().unwrap().hide_emitters);
+    assert_eq!(
+        refused(json!({"hide_emitters": true, "bounce": 0})),
+        "bounce (--bounce) 0: at least 1 with --hide-emitters (bounce 0 is the emitters it hides)"
+    );
+    for estimator in ["bdpt", "light"] {
+        assert_eq!(
+            refused(json!({"hide_emitters": true, "integrator": estimator})),
+            "hide_emitters (--hide-emitters) true: only with the path tracer (a scene may ask for it: --hide-emitters false)"
+        );
+    }
 }
 
 #[test]

@@ -17,12 +17,14 @@
 //! not have is an error.
 
 mod bsdfs;
+mod cie_tables;
 mod doc;
 mod emitters;
 mod principled;
 mod sensor;
 mod serialized;
 mod shapes;
+mod spectrum;
 mod tables;
 mod tessellate;
 mod textures;

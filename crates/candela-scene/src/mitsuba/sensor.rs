@@ -36,7 +36,7 @@
 
 use super::doc::{elements, Doc, XNode};
 use super::transform::to_world;
-use super::values::{float, integer, string};
+use super::values::{boolean, float, integer, string};
 use super::Builder;
 use crate::desc::{CameraDesc, ClipRange, Projection};
 use crate::error::{ErrorKind, LoadError};
@@ -66,6 +66,9 @@ pub(super) fn integrator(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), 
             integer(doc, node, "max_depth", -1)?
         }
     };
+    // Emitters seen directly are left out of the image (Mitsuba hides them
+    // at its depth 0, the camera ray's first hit, and only there).
+    b.hints.hide_emitters = boolean(doc, node, "hide_emitters", false)?;
     b.hints.max_depth = Some(match depth {
         -1 => UNLIMITED_DEPTH,
         d if d >= 1 => u32::try_from(d - 1)

@@ -2,21 +2,17 @@
 //! `<rgb>`, `<spectrum>` or `<float>`.
 //!
 //! # Spectra
-//! A `<spectrum value="400:0.343, 404:0.445, ...">` becomes linear RGB by
-//! averaging the spectrum (linearly interpolated between its samples, held
-//! constant beyond its ends) over three bands: blue 400–500 nm, green
-//! 500–600 nm, red 600–700 nm. This is cruder than integrating against the
-//! CIE 1931 observer, but it is exact where it matters most here: a flat
-//! spectrum (a grey reflectance, a white emitter) stays exactly flat, so
-//! emitters keep their power and grey surfaces their albedo. A single
-//! number (`value="0.5"`) is a flat spectrum.
+//! A `<spectrum value="400:0.343, 404:0.445, ...">` becomes the linear RGB
+//! that Mitsuba 3's RGB variants make of it (see `spectrum.rs`): inside an
+//! `<emitter>` as light (unbounded, white = equal energy), elsewhere as a
+//! reflectance under D65 (clamped to [0, 1], except a conductor's `eta`
+//! and `k`). A single number (`value="0.5"`) is a flat spectrum: that
+//! number elsewhere, the equal-energy white of that power in an emitter.
 
 use super::doc::{Doc, XNode};
+use super::spectrum::SpectrumReading;
 use crate::error::{ErrorKind, LoadError};
 use glam::Vec3;
-
-/// The wavelength bands (nm) averaged into blue, green and red.
-const BANDS: [(f32, f32); 3] = [(600.0, 700.0), (500.0, 600.0), (400.0, 500.0)];
 
 /// Parses one number of `node`'s attribute text (already substituted).
 pub(super) fn number(doc: &Doc, node: XNode, token: &str) -> Result<f32, LoadError> {
@@ -188,6 +184,7 @@ pub(super) fn spectrum(doc: &Doc, node: XNode) -> Result<Vec3, LoadError> {
             "only inline spectra (value=\"...\") are supported",
         ));
     };
+    let reading = SpectrumReading::of(doc, node)?;
     if !text.contains(':') {
         let v = numbers(doc, node, &text)?;
         if v.len() != 1 {
@@ -197,7 +194,7 @@ pub(super) fn spectrum(doc: &Doc, node: XNode) -> Result<Vec3, LoadError> {
                 format!("a flat spectrum has 1 number, found {}", v.len()),
             ));
         }
-        return Ok(Vec3::splat(v[0]));
+        return Ok(reading.flat(v[0]));
     }
     let mut samples: Vec<(f32, f32)> = Vec::new();
     for pair in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
@@ -214,29 +211,7 @@ pub(super) fn spectrum(doc: &Doc, node: XNode) -> Result<Vec3, LoadError> {
         }
         samples.push((l, v));
     }
-    Ok(bands(&samples))
-}
-
-/// Averages of the piecewise-linear spectrum `samples` over [`BANDS`].
-pub(super) fn bands(samples: &[(f32, f32)]) -> Vec3 {
-    let at = |l: f32| -> f32 {
-        let i = samples.partition_point(|&(w, _)| w < l);
-        if i == 0 {
-            return samples[0].1;
-        }
-        if i == samples.len() {
-            return samples[i - 1].1;
-        }
-        let ((l0, v0), (l1, v1)) = (samples[i - 1], samples[i]);
-        v0 + (v1 - v0) * (l - l0) / (l1 - l0)
-    };
-    // Midpoint rule on 1 nm steps: the spectra here are sampled every few
-    // nanometres, so this is exact to well below their own precision.
-    let avg = |(a, b): (f32, f32)| {
-        let n = (b - a) as usize;
-        (0..n).map(|i| at(a + i as f32 + 0.5)).sum::<f32>() / n as f32
-    };
-    Vec3::new(avg(BANDS[0]), avg(BANDS[1]), avg(BANDS[2]))
+    Ok(reading.rgb(&samples))
 }
 
 /// An error unless `node` is one of the element kinds `tags`.
