@@ -1146,6 +1146,13 @@ add("sensor-thinlens", header(
     + SENSOR_BODY, {**slot_regions(["sphere 1", "sphere 2", "sphere 3", "sphere 4"]), **WHOLE})
 add("sensor-up", header("lookat with a tilted up vector (the image turns).",
                         lookat='origin="0.4, 0.3, 3.6" target="0, -0.2, 0" up="0.3, 1, 0"') + SENSOR_BODY, WHOLE)
+# An orthographic sensor: to_world's uniform scale 1.4 makes the view 2.8
+# wide (Mitsuba's film spans camera x in [-1, 1]); a slight tilt.
+ortho = header("An orthographic sensor, 2.8 wide, looking slightly down.", sensor="orthographic",
+               lookat='origin="0, 0.3, 3.6" target="0, -0.3, 0" up="0, 1, 0"')
+ortho = ortho.replace('        <string name="fov_axis" value="x"/>\n        <float name="fov" value="48.0"/>\n', '')
+ortho = ortho.replace('<transform name="to_world">\n            <lookat', '<transform name="to_world">\n            <scale value="1.4"/>\n            <lookat')
+add("sensor-orthographic", ortho + SENSOR_BODY, WHOLE)
 add("sensor-clip", header("near_clip 3.5 cuts the spheres' front caps away (twosided, so their inside shows).",
                           extra_sensor='\n        <float name="near_clip" value="3.5"/>\n        <float name="far_clip" value="100"/>')
     + SENSOR_BODY, WHOLE)

@@ -179,6 +179,34 @@ fn hide_emitters_is_a_hint_of_the_integrator() {
 }
 
 #[test]
+fn an_orthographic_sensor_is_as_wide_as_twice_its_x_scale() {
+    let dir = candela_testkit::TempDir::new("mitsuba-orthographic");
+    let load_with = |scale: &str| {
+        let path = dir.join("ortho.xml");
+        let text = format!(
+            r#"<scene version="3.0.0"><sensor type="orthographic"><transform name="to_world">
+            <scale {scale}/><lookat origin="0, 0, 3" target="0, 0, 0" up="0, 1, 0"/>
+            </transform></sensor><shape type="sphere"/></scene>"#
+        );
+        std::fs::write(&path, text).unwrap();
+        load(&path, &LoadOptions::default()).unwrap()
+    };
+    let l = load_with(r#"value="1.4""#);
+    assert!(l.report.is_empty(), "{}", l.report);
+    assert!(l.hints.file_camera);
+    let Projection::Orthographic { width } = l.scene.cameras[0].projection else {
+        panic!("{:?}", l.scene.cameras[0].projection)
+    };
+    assert!((width - 2.8).abs() < 1e-5, "width {width}");
+    // A squashed view cannot keep the image's aspect: said once.
+    let squashed = load_with(r#"x="1" y="2""#);
+    assert!(squashed
+        .report
+        .to_string()
+        .contains("orthographic view scaled unevenly"));
+}
+
+#[test]
 fn transforms_compose_in_mitsubas_order() {
     let l = base();
     let s = &l.scene;

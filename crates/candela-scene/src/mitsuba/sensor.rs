@@ -85,14 +85,11 @@ pub(super) fn integrator(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), 
     Ok(())
 }
 
-/// A `<sensor>`: `perspective` or `thinlens`.
+/// A `<sensor>`: `perspective`, `thinlens` or `orthographic`.
 pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), LoadError> {
     let kind = doc.plugin_type(node)?;
-    if kind != "perspective" && kind != "thinlens" {
-        if matches!(
-            kind.as_str(),
-            "orthographic" | "radiancemeter" | "irradiancemeter" | "batch"
-        ) {
+    if !matches!(kind.as_str(), "perspective" | "thinlens" | "orthographic") {
+        if matches!(kind.as_str(), "radiancemeter" | "irradiancemeter" | "batch") {
             return b.warn(
                 doc,
                 node,
@@ -107,8 +104,10 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
     }
     let (film, filter) = film(b, doc, node)?;
     sampler(b, doc, node)?;
-    let (xfov_deg, yfov_deg) = fields_of_view(doc, node, film)?;
-    let projection = if kind == "thinlens" {
+    let projection = if kind == "orthographic" {
+        orthographic(b, doc, node)?
+    } else if kind == "thinlens" {
+        let (xfov_deg, yfov_deg) = fields_of_view(doc, node, film)?;
         let aperture_radius = float(doc, node, "aperture_radius", f32::NAN)?;
         let focus_distance = float(doc, node, "focus_distance", f32::NAN)?;
         if !(aperture_radius >= 0.0 && focus_distance > 0.0) {
@@ -125,6 +124,7 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
             focus_distance,
         }
     } else {
+        let (xfov_deg, yfov_deg) = fields_of_view(doc, node, film)?;
         Projection::Perspective { xfov_deg, yfov_deg }
     };
     let world_from_camera = to_world(doc, node)? * Mat4::from_scale(Vec3::new(-1.0, 1.0, -1.0));
@@ -161,6 +161,31 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
         loc: doc.loc(node),
     });
     Ok(())
+}
+
+/// An `orthographic` sensor's extent: Mitsuba's film spans camera x in
+/// [−1, 1] and y in [−1, 1] over the aspect, both scaled by `to_world`, so
+/// the view is 2·|to_world x| wide and its height follows the image's
+/// aspect, as Candela's orthographic camera makes it. A y scale unlike the
+/// x scale (a squashed view) is reported and the x scale used.
+fn orthographic(b: &mut Builder, doc: &Doc, node: XNode) -> Result<Projection, LoadError> {
+    let m = to_world(doc, node)?;
+    let (sx, sy) = (m.x_axis.truncate().length(), m.y_axis.truncate().length());
+    if !(sx > 0.0 && sx.is_finite()) {
+        return Err(doc.err(
+            node,
+            ErrorKind::DegenerateCamera,
+            "to_world is not invertible",
+        ));
+    }
+    if (sx - sy).abs() > 1e-4 * sx.max(sy) {
+        b.warn(
+            doc,
+            node,
+            format!("an orthographic view scaled unevenly (x {sx}, y {sy}) keeps the image's aspect; x's scale is used"),
+        )?;
+    }
+    Ok(Projection::Orthographic { width: 2.0 * sx })
 }
 
 /// Horizontal and vertical fields of view (degrees) from `fov` along
