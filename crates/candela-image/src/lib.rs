@@ -3,7 +3,8 @@
 //! The renderer resolves its film into an [`RgbImage`] of linear radiance;
 //! this crate turns it into files ([`write_png`] through a [`ToneMap`],
 //! [`write_exr`] with denoiser layers), reads textures back ([`read_png`],
-//! [`read_exr`]), measures error ([`metrics`]) and denoises with Intel Open
+//! [`read_exr`], and JPEG, TGA, BMP and Radiance HDR through [`read_stored`]
+//! and [`read_radiance_hdr`]), measures error ([`metrics`]) and denoises with Intel Open
 //! Image Denoise when it is installed ([`denoise`]). Every file is written
 //! through [`atomic_write`], so an output path never holds a partial file.
 #![warn(missing_docs)]
@@ -18,6 +19,7 @@ mod heat;
 mod merge;
 pub mod metrics;
 mod png_io;
+mod raster_io;
 pub mod render_info;
 mod tonemap;
 pub mod variance;
@@ -33,5 +35,6 @@ pub use exr_io::{
 pub use heat::{finite_percentile, heat_colormap, heat_image};
 pub use merge::merge_renders;
 pub use png_io::{read_png, read_png_stored, write_png, write_png_display, StoredPng};
+pub use raster_io::{read_radiance_hdr, read_stored, STORED_EXTENSIONS};
 pub use render_info::{RenderInfo, SppSpread};
 pub use tonemap::{quantize_u8, srgb_decode, srgb_encode, ToneCurve, ToneMap};

@@ -15,7 +15,7 @@ use crate::{atomic_write, ImageError, RgbImage, ToneMap};
 
 /// The largest decoded PNG we accept, in bytes (a 16k × 16k RGBA image at
 /// 8 bits): well above any texture, low enough to refuse a hostile header.
-const MAX_DECODED_BYTES: usize = 1 << 30;
+pub(crate) const MAX_DECODED_BYTES: usize = 1 << 30;
 
 /// Writes `image` as an 8-bit sRGB PNG after applying `tone_map`, atomically.
 ///

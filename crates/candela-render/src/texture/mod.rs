@@ -10,12 +10,12 @@
 //! of a bilinear lookup's four texels on its own.
 //!
 //! Images are read once per path and colour space ([`TextureCache`]).
-//! PNG texels are taken from the file's stored values: decoded from sRGB
-//! when the description says [`ColorSpace::Srgb`] (colour, emission), and
-//! exactly `v / 255` when it says [`ColorSpace::Linear`] (roughness,
-//! metalness, normal maps, opacity), so data maps are not bent by a
-//! transfer curve and back. EXR holds linear values; one declared sRGB is
-//! decoded. Alpha, when the file has it, is kept beside the colour (always
+//! Texels of the 8-bit formats (PNG, JPEG, TGA, BMP) are taken from the
+//! file's stored values: decoded from sRGB when the description says
+//! [`ColorSpace::Srgb`] (colour, emission), and exactly `v / 255` when it
+//! says [`ColorSpace::Linear`] (roughness, metalness, normal maps,
+//! opacity), so data maps are not bent by a transfer curve and back. EXR
+//! and Radiance HDR hold linear values; one declared sRGB is decoded. Alpha, when the file has it, is kept beside the colour (always
 //! linear: it is coverage, not colour), for opacity slots. Texels are
 //! linear RGB.
 
@@ -27,7 +27,10 @@ pub use cache::TextureCache;
 pub use point::TexturePoint;
 pub use slot::{SlotSource, SlotTexture};
 
-use candela_image::{read_exr, read_png, read_png_stored, srgb_decode, ImageError, RgbImage};
+use candela_image::{
+    read_exr, read_png_stored, read_radiance_hdr, read_stored, srgb_decode, ImageError, RgbImage,
+    StoredPng, STORED_EXTENSIONS,
+};
 use candela_scene::{ColorSpace, TextureWrap};
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
@@ -38,36 +41,58 @@ pub enum TextureError {
     /// The file could not be read or decoded.
     #[error(transparent)]
     Image(#[from] ImageError),
-    /// The file's extension is neither `.png` nor `.exr`.
-    #[error("{0}: unknown image format (expected .png or .exr)")]
+    /// The file's extension is not one of the formats read.
+    #[error("{0}: unknown image format (expected .png, .jpg, .tga, .bmp, .exr or .hdr)")]
     UnknownFormat(PathBuf),
     /// The image has no pixels.
     #[error("the image is empty (0 pixels)")]
     Empty,
 }
 
-/// Reads a PNG (sRGB-decoded) or EXR (linear) file as linear RGB, by its
-/// extension.
-pub fn read_linear_image(path: &Path) -> Result<RgbImage, TextureError> {
-    let ext = path
-        .extension()
+/// `path`'s extension, lower case.
+fn extension(path: &Path) -> Option<String> {
+    path.extension()
         .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("png") => Ok(read_png(path)?),
+        .map(str::to_ascii_lowercase)
+}
+
+/// Whether `path` is an 8-bit format read as stored values (PNG, JPEG,
+/// TGA, BMP), sRGB-encoded unless a scene says the data is linear.
+fn is_stored_format(path: &Path) -> bool {
+    extension(path).is_some_and(|e| e == "png" || STORED_EXTENSIONS.contains(&e.as_str()))
+}
+
+/// An 8-bit file's stored values (see [`is_stored_format`]).
+fn read_stored_values(path: &Path) -> Result<StoredPng, TextureError> {
+    Ok(match extension(path).as_deref() {
+        Some("png") => read_png_stored(path)?,
+        _ => read_stored(path)?,
+    })
+}
+
+/// Reads an image file as linear RGB, by its extension: an 8-bit format
+/// sRGB-decoded, EXR and Radiance HDR as they are.
+pub fn read_linear_image(path: &Path) -> Result<RgbImage, TextureError> {
+    match extension(path).as_deref() {
         Some("exr") => Ok(read_exr(path)?),
+        Some("hdr") => Ok(read_radiance_hdr(path)?),
+        _ if is_stored_format(path) => {
+            let stored = read_stored_values(path)?;
+            let pixels = stored
+                .pixels
+                .iter()
+                .map(|p| [srgb_decode(p[0]), srgb_decode(p[1]), srgb_decode(p[2])])
+                .collect();
+            Ok(RgbImage::from_pixels(stored.width, stored.height, pixels)?)
+        }
         _ => Err(TextureError::UnknownFormat(path.to_path_buf())),
     }
 }
 
 /// The colour space candela-image's reader assumes for `path`'s format:
-/// sRGB for PNG, linear otherwise (EXR).
+/// sRGB for the 8-bit formats, linear otherwise (EXR, HDR).
 pub fn native_color_space(path: &Path) -> ColorSpace {
-    let png = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if png {
+    if is_stored_format(path) {
         ColorSpace::Srgb
     } else {
         ColorSpace::Linear
@@ -113,16 +138,16 @@ impl ImageTexture {
         })
     }
 
-    /// Reads a PNG or EXR file (see [`read_linear_image`]).
+    /// Reads an image file (see [`read_linear_image`]).
     pub fn load(path: &Path) -> Result<Self, TextureError> {
         Self::from_image(&read_linear_image(path)?)
     }
 
-    /// Reads a PNG or EXR file whose stored values are in `color_space`
-    /// (see the module docs); a PNG's alpha channel is kept.
+    /// Reads an image file whose stored values are in `color_space` (see
+    /// the module docs); an 8-bit file's alpha channel is kept.
     pub fn load_in(path: &Path, color_space: ColorSpace) -> Result<Self, TextureError> {
-        if native_color_space(path) == ColorSpace::Srgb {
-            return Self::load_png_stored(path, color_space);
+        if is_stored_format(path) {
+            return Self::load_stored(path, color_space);
         }
         let mut texture = Self::load(path)?;
         if color_space == ColorSpace::Srgb {
@@ -134,9 +159,9 @@ impl ImageTexture {
         Ok(texture)
     }
 
-    /// A PNG from its stored values, decoded from sRGB or not.
-    fn load_png_stored(path: &Path, color_space: ColorSpace) -> Result<Self, TextureError> {
-        let stored = read_png_stored(path)?;
+    /// An 8-bit file from its stored values, decoded from sRGB or not.
+    fn load_stored(path: &Path, color_space: ColorSpace) -> Result<Self, TextureError> {
+        let stored = read_stored_values(path)?;
         if stored.width == 0 || stored.height == 0 {
             return Err(TextureError::Empty);
         }

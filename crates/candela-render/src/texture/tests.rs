@@ -101,7 +101,7 @@ fn the_cache_loads_once_and_reports_a_missing_file_once() {
     let good = dir.join("good.exr");
     write_exr(&good, &ExrLayers::beauty(image())).unwrap();
     let missing = dir.join("missing.png");
-    let odd = dir.join("texture.tga");
+    let odd = dir.join("texture.dds");
     let mut cache = TextureCache::new();
     let a = cache.get(&good).expect("the EXR loads");
     let b = cache.get(&good).expect("and again");
@@ -303,4 +303,45 @@ fn bilinear_lookups_wrap_each_of_the_four_texels() {
     let mirror = t.gradient_channel(beyond, 0, TextureWrap::both(WrapMode::Mirror));
     let repeat = t.gradient_channel(Vec2::new(0.7, 0.5), 0, TextureWrap::REPEAT);
     assert!((mirror.x + repeat.x).abs() < 1e-4, "{mirror} vs {repeat}");
+}
+
+/// [`STORED`] as an uncompressed 32-bit TGA, written by hand: BGRA bytes,
+/// rows from the bottom (the format's default origin), so the reader's
+/// row order is tested as well as its channel order.
+fn write_rgba_tga(path: &std::path::Path) {
+    let mut bytes = vec![0u8, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0, 32, 8];
+    for row in STORED.chunks(2).rev() {
+        for [r, g, b, a] in row {
+            bytes.extend([*b, *g, *r, *a]);
+        }
+    }
+    std::fs::write(path, bytes).unwrap();
+}
+
+#[test]
+fn a_tga_reads_as_the_png_of_the_same_stored_values() {
+    // Every 8-bit format goes through the same stored-value path: the TGA
+    // must give the PNG's texels, alpha included, in both colour spaces.
+    let dir = candela_testkit::TempDir::new("tga-2x2");
+    let (png, tga) = (dir.join("known.png"), dir.join("known.tga"));
+    write_rgba_png(&png);
+    write_rgba_tga(&tga);
+    let mut cache = TextureCache::new();
+    for space in [ColorSpace::Linear, ColorSpace::Srgb] {
+        let (a, b) = (
+            cache.get_in(&png, space).unwrap(),
+            cache.get_in(&tga, space).unwrap(),
+        );
+        assert!(b.has_alpha());
+        for (i, j) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            assert_eq!(a.texel(i, j), b.texel(i, j), "{space:?} texel ({i}, {j})");
+            let uv = Vec2::new((i as f32 + 0.5) / 2.0, (j as f32 + 0.5) / 2.0);
+            assert_eq!(
+                a.lookup_channel(uv, 3, TextureWrap::REPEAT),
+                b.lookup_channel(uv, 3, TextureWrap::REPEAT)
+            );
+        }
+    }
+    assert_eq!(native_color_space(&tga), ColorSpace::Srgb);
+    assert_eq!(native_color_space(&dir.join("sky.hdr")), ColorSpace::Linear);
 }
