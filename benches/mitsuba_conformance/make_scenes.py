@@ -1106,6 +1106,20 @@ for name, what, b in [("tex-meshes", "a nearest bitmap", BITMAP),
     labels = [m[0] for m in MESH_UV] + ["sphere in a turned instance"]
     add(name, text, {label: tsphere_rect(xs[i]) for i, label in enumerate(labels)})
 
+# Meshes without uv: Mitsuba's dp/du (an anisotropic BSDF's tangent) is
+# then a triangle's first edge, p1 - p0, and dp/dv its second.
+MESH_NO_UV = [
+    ("ply without uv", "ply", "sphere_bare.ply", ""),
+    ("obj without uv", "obj", "sphere_bare.obj", ""),
+    ("serialized without uv", "serialized", "spheres.serialized",
+     '\n        <integer name="shape_index" value="1"/>'),
+]
+text = header("PLY, OBJ and serialized spheres without uv, turned, with an anisotropic rough conductor.") + cornell()
+for i, (label, kind, fname, extra) in enumerate(MESH_NO_UV):
+    text += turned_shape(kind, f"m{i}", xs[i], ANISO, f'<scale value="0.3"/>\n            {TURN_MESH}',
+                         f'\n        <string name="filename" value="textures/{fname}"/>{extra}')
+add("tex-meshes-nouv-aniso", text, {m[0]: tsphere_rect(xs[i]) for i, m in enumerate(MESH_NO_UV)})
+
 # Null surfaces and flip_normals on spheres, under volpath (Mitsuba's path
 # integrator shows a null emitter black and stops shadow rays at null
 # surfaces; volpath passes them both ways). max_depth 32 so that whether a
