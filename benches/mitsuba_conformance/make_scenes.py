@@ -770,6 +770,18 @@ def write_mesh_files(t):
         f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n"
         + "".join(" ".join(f"{c:.6f}" for c in p) + "\n" for p in pos)
         + "".join(f"3 {a} {b} {c}\n" for a, b, c in faces))
+    # The same sphere with its uv, as PLY and OBJ (the same numbers in both
+    # files: Mitsuba flips the OBJ's v and keeps the PLY's).
+    (t / "sphere_uv.ply").write_text(
+        f"ply\nformat ascii 1.0\nelement vertex {len(pos)}\n"
+        "property float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\n"
+        f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n"
+        + "".join(" ".join(f"{c:.6f}" for c in p + t_) + "\n" for p, t_ in zip(pos, uv))
+        + "".join(f"3 {a} {b} {c}\n" for a, b, c in faces))
+    (t / "sphere_uv.obj").write_text(
+        "".join("v " + " ".join(f"{c:.6f}" for c in p) + "\n" for p in pos)
+        + "".join(f"vt {u:.6f} {v:.6f}\n" for u, v in uv)
+        + "".join(f"f {a + 1}/{a + 1} {b + 1}/{b + 1} {c + 1}/{c + 1}\n" for a, b, c in faces))
     (t / "sphere_bare.obj").write_text(
         "".join("v " + " ".join(f"{c:.6f}" for c in p) + "\n" for p in pos)
         + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces))
@@ -1083,6 +1095,127 @@ text = header("Textures in the parameters of conductor, plastic and principled B
 for i, (label, b) in enumerate(TEX_BSDFS):
     text += textured_panel(f"t{i}", xs[i], b)
 add("tex-bsdfs", text, {label: tpanel_rect(xs[i]) for i, (label, _) in enumerate(TEX_BSDFS)})
+
+# Textures and shading frames on the built-in shapes Candela tessellates,
+# each turned by its to_world (a non-uniform scale where Mitsuba allows one:
+# the cylinder only along its axis): where each puts uv (0, 0) and which
+# way u and v run (a `nearest` bitmap), its dp/du (the tangent of an
+# anisotropic conductor) and its tangent frame (normal and bump maps). The
+# cubes are turned two ways so that all six faces show between them.
+TSHAPE_Y = -0.45
+
+
+def turned_shape(kind, id_, x, bsdf, turn, extra=""):
+    return f"""    <shape type="{kind}" id="{id_}">{extra}
+        <transform name="to_world">
+            {turn}
+            <translate x="{x}" y="{TSHAPE_Y}" z="0"/>
+        </transform>
+{ind(bsdf)}
+    </shape>
+"""
+
+
+def tshape_rect(x, half=0.12):
+    px, py = project((x, TSHAPE_Y, 0))
+    s = (W / 2) / math.tan(math.radians(FOV_X / 2)) / CAM_Z
+    return [int(px - half * s), int(py - half * s), int(px + half * s), int(py + half * s)]
+
+
+TSHAPES = [
+    ("rectangle", '<scale x="0.2" y="0.32"/>\n            <rotate z="1" angle="30"/>\n'
+                  '            <rotate y="1" angle="35"/>\n            <rotate x="1" angle="15"/>'),
+    ("disk", '<scale x="0.3" y="0.22"/>\n            <rotate z="1" angle="20"/>\n'
+             '            <rotate x="1" angle="-30"/>\n            <rotate y="1" angle="20"/>'),
+    ("cube", '<scale x="0.16" y="0.2" z="0.13"/>\n            <rotate y="1" angle="35"/>\n'
+             '            <rotate x="1" angle="25"/>'),
+    ("cylinder", '<translate z="-0.5"/>\n            <scale x="0.17" y="0.17" z="0.5"/>\n'
+                 '            <rotate z="1" angle="50"/>\n            <rotate x="1" angle="-75"/>\n'
+                 '            <rotate z="1" angle="-25"/>'),
+]
+# The second cube shows the faces the first hides (-x, -y, -z).
+CUBE_BACK = ('<scale x="0.16" y="0.2" z="0.13"/>\n            <rotate y="1" angle="215"/>\n'
+             '            <rotate x="1" angle="-25"/>')
+SHAPE_SCENES = [
+    ("tex-shapes", "a nearest bitmap", BITMAP),
+    ("tex-shapes-aniso", "an anisotropic rough conductor (alpha_u 0.05, alpha_v 0.4)", ANISO),
+    ("tex-shapes-normalmap", "a normal map", NORMALMAP),
+    ("tex-shapes-bumpmap", "a bump map", BUMPMAP),
+]
+for name, what, b in SHAPE_SCENES:
+    text = header(f"Rectangle, disk, cube and cylinder, each turned and scaled, with {what}.") + cornell()
+    for i, (kind, turn) in enumerate(TSHAPES):
+        text += turned_shape(kind, f"s{i}", xs[i], b, turn)
+    add(name, text, {kind: tshape_rect(xs[i]) for i, (kind, _) in enumerate(TSHAPES)})
+CUBE_MAPS = [("bitmap", BITMAP), ("anisotropic roughconductor", ANISO), ("normalmap", NORMALMAP),
+             ("bumpmap", BUMPMAP)]
+text = header("Cubes turned to show their -x, -y and -z faces: bitmap, anisotropic conductor, "
+              "normal map, bump map.") + cornell()
+for i, (label, b) in enumerate(CUBE_MAPS):
+    text += turned_shape("cube", f"c{i}", xs[i], b, CUBE_BACK)
+add("tex-cube-back", text, {label: tshape_rect(xs[i]) for i, (label, _) in enumerate(CUBE_MAPS)})
+
+
+# Mesh files with uv: PLY (Mitsuba keeps its v), OBJ (Mitsuba flips its v on
+# reading), serialized (kept), and a sphere in a shape group placed by a
+# turned instance. The same uv sphere in each (pole on +y, v = 0 there).
+TURN_MESH = '<rotate x="1" angle="-40"/>\n            <rotate y="1" angle="-60"/>'
+MESH_UV = [
+    ("ply with uv", "ply", "sphere_uv.ply"),
+    ("obj with uv", "obj", "sphere_uv.obj"),
+    ("serialized with uv", "serialized", "spheres.serialized"),
+]
+
+
+def mesh_uv_shape(id_, kind, fname, x, bsdf):
+    return turned_shape(kind, id_, x, bsdf, f'<scale value="0.3"/>\n            {TURN_MESH}',
+                        f'\n        <string name="filename" value="textures/{fname}"/>')
+
+
+def instanced_sphere(x, bsdf):
+    return f"""    <shape type="shapegroup" id="group">
+        <shape type="sphere">
+            <transform name="to_world">
+                <rotate z="1" angle="35"/>
+            </transform>
+{ind(bsdf, 12)}
+        </shape>
+    </shape>
+    <shape type="instance">
+        <ref id="group"/>
+        <transform name="to_world">
+            <scale value="0.3"/>
+            <rotate x="1" angle="-70"/>
+            <rotate y="1" angle="40"/>
+            <translate x="{x}" y="{TSHAPE_Y}" z="0"/>
+        </transform>
+    </shape>
+"""
+
+
+for name, what, b in [("tex-meshes", "a nearest bitmap", BITMAP),
+                      ("tex-meshes-aniso", "an anisotropic rough conductor", ANISO)]:
+    text = header(f"PLY, OBJ and serialized spheres with uv, turned, and a sphere in a turned instance, "
+                  f"with {what}.") + cornell()
+    for i, (label, kind, fname) in enumerate(MESH_UV):
+        text += mesh_uv_shape(f"m{i}", kind, fname, xs[i], b)
+    text += instanced_sphere(xs[3], b)
+    labels = [m[0] for m in MESH_UV] + ["sphere in a turned instance"]
+    add(name, text, {label: tsphere_rect(xs[i]) for i, label in enumerate(labels)})
+
+# Meshes without uv: Mitsuba's dp/du (an anisotropic BSDF's tangent) is
+# then a triangle's first edge, p1 - p0, and dp/dv its second.
+MESH_NO_UV = [
+    ("ply without uv", "ply", "sphere_bare.ply", ""),
+    ("obj without uv", "obj", "sphere_bare.obj", ""),
+    ("serialized without uv", "serialized", "spheres.serialized",
+     '\n        <integer name="shape_index" value="1"/>'),
+]
+text = header("PLY, OBJ and serialized spheres without uv, turned, with an anisotropic rough conductor.") + cornell()
+for i, (label, kind, fname, extra) in enumerate(MESH_NO_UV):
+    text += turned_shape(kind, f"m{i}", xs[i], ANISO, f'<scale value="0.3"/>\n            {TURN_MESH}',
+                         f'\n        <string name="filename" value="textures/{fname}"/>{extra}')
+add("tex-meshes-nouv-aniso", text, {m[0]: tsphere_rect(xs[i]) for i, m in enumerate(MESH_NO_UV)})
 
 # Null surfaces and flip_normals on spheres, under volpath (Mitsuba's path
 # integrator shows a null emitter black and stops shadow rays at null

@@ -118,11 +118,13 @@ fn base() -> Loaded {
 fn the_base_file_loads_every_element() {
     let l = base();
     let s = &l.scene;
-    // floor (2), lamp rectangle (2), cube (12, drawn twice), disk (64).
+    // floor (2), lamp rectangle (2), cube (12, drawn twice), disk (64
+    // segments of 16 rings, the innermost a fan: 64 × 31).
+    let disk = 64 * 31;
     assert_eq!(s.meshes.len(), 4);
-    assert_eq!(s.triangle_count(), 2 + 2 + 12 + 64);
+    assert_eq!(s.triangle_count(), 2 + 2 + 12 + disk);
     assert_eq!(s.instances.len(), 5);
-    assert_eq!(s.instanced_triangle_count(), 2 + 2 + 24 + 64);
+    assert_eq!(s.instanced_triangle_count(), 2 + 2 + 24 + disk);
     // The ball, and the group's sphere in both instances: the second
     // scales by 2 and then moves by +x.
     assert_eq!(s.spheres.len(), 3);

@@ -3,6 +3,14 @@
 //! normals outward), `disk` (unit disk in z = 0, normal +Z) and `cylinder`
 //! (radius 1 around +Z from z = 0 to 1, open, normals outward). Triangles
 //! wind counter-clockwise seen from the side their normal points to.
+//!
+//! Each carries Mitsuba's own uv (v as Mitsuba reads it, from an image's
+//! top row; the loader turns it into Candela's rows), since textures, the
+//! tangent of anisotropic BSDFs (dp/du) and normal and bump maps all follow
+//! it. Read from Mitsuba 3 by ray queries (`si.uv`, `si.dp_du`): the
+//! rectangle's uv is ((x + 1) / 2, (y + 1) / 2); the disk's is polar, (r,
+//! φ / 2π) with φ from +X toward +Y; the cube's faces each have their own
+//! orientation ([`CUBE_FACES`]); the cylinder's is (φ / 2π, z).
 
 use crate::desc::{MeshDesc, SourceLoc};
 use glam::{Vec2, Vec3};
@@ -11,22 +19,50 @@ use glam::{Vec2, Vec3};
 /// the disk's.
 pub(super) const DISK_SEGMENTS: u32 = 64;
 
+/// Rings of a tessellated disk. Its polar uv is exact at the vertices and
+/// linear between them: u = r within the chords' sag (0.12 %), v nearly
+/// exact except inside the innermost ring, a fan around the centre (where
+/// φ has no value), where it strays by up to half a segment. v is constant
+/// along a spoke, so each triangle's dp/du runs along one of its two
+/// spokes: the radius (Mitsuba's dp/du) within one segment.
+pub(super) const DISK_RINGS: u32 = 16;
+
 /// Segments around a tessellated cylinder. The mesh carries the exact
 /// radial normals, so shading matches the round surface; the polygon's
 /// area is within 0.05 % of the cylinder's and its silhouette within
 /// 0.03 % of the radius.
 pub(super) const CYLINDER_SEGMENTS: u32 = 128;
 
-/// The square of side 2 around `center` spanned by `u` and `v`, facing u × v.
-fn quad(mesh: &mut MeshDesc, center: Vec3, u: Vec3, v: Vec3) {
+/// Mitsuba's cube face by face: (outward normal, the direction u grows
+/// along, the direction v grows along), each over [0, 1] across the face
+/// (Mitsuba's cube is a mesh of its own with these texture coordinates).
+/// On every face u × v points inward: a left-handed (u, v) in Mitsuba's
+/// rows, right-handed once v is flipped into Candela's.
+const CUBE_FACES: [(Vec3, Vec3, Vec3); 6] = [
+    (Vec3::X, Vec3::Y, Vec3::NEG_Z),
+    (Vec3::NEG_X, Vec3::Y, Vec3::Z),
+    (Vec3::Y, Vec3::NEG_X, Vec3::NEG_Z),
+    (Vec3::NEG_Y, Vec3::Z, Vec3::X),
+    (Vec3::Z, Vec3::Y, Vec3::X),
+    (Vec3::NEG_Z, Vec3::NEG_Y, Vec3::X),
+];
+
+/// The square of side 2 around `center` spanned by `u` and `v` (uv (0, 0)
+/// at center − u − v, (1, 1) at center + u + v), facing `n`.
+fn quad(mesh: &mut MeshDesc, center: Vec3, u: Vec3, v: Vec3, n: Vec3) {
     let base = mesh.positions.len() as u32;
-    let n = u.cross(v);
     for (su, sv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
         mesh.positions.push(center + su * u + sv * v);
         mesh.normals.push(n);
         mesh.uvs.push(Vec2::new(0.5 * (su + 1.0), 0.5 * (sv + 1.0)));
     }
-    for t in [[0, 1, 2], [0, 2, 3]] {
+    // The corners go around counter-clockwise about u × v.
+    let tris = if u.cross(v).dot(n) > 0.0 {
+        [[0, 1, 2], [0, 2, 3]]
+    } else {
+        [[0, 2, 1], [0, 3, 2]]
+    };
+    for t in tris {
         let tri = t.map(|i| base + i);
         mesh.triangles.push(tri);
         mesh.normal_indices.push(tri);
@@ -41,7 +77,7 @@ pub(super) fn rectangle(name: String, loc: SourceLoc) -> MeshDesc {
         loc,
         ..MeshDesc::default()
     };
-    quad(&mut m, Vec3::ZERO, Vec3::X, Vec3::Y);
+    quad(&mut m, Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z);
     m
 }
 
@@ -52,36 +88,53 @@ pub(super) fn cube(name: String, loc: SourceLoc) -> MeshDesc {
         loc,
         ..MeshDesc::default()
     };
-    let axes = [Vec3::X, Vec3::Y, Vec3::Z];
-    for a in 0..3 {
-        let (n, u, v) = (axes[a], axes[(a + 1) % 3], axes[(a + 2) % 3]);
-        quad(&mut m, n, u, v); // u × v = +n
-        quad(&mut m, -n, v, u); // v × u = −n
+    for (n, u, v) in CUBE_FACES {
+        quad(&mut m, n, u, v, n);
     }
     m
 }
 
-/// Mitsuba's `disk`, as a fan of [`DISK_SEGMENTS`] triangles.
+/// Mitsuba's `disk` with its polar uv: [`DISK_RINGS`] rings of
+/// [`DISK_SEGMENTS`] segments, the innermost a fan whose centre vertex has,
+/// per segment, v at the segment's middle angle. The seam at φ = 0 has
+/// its own vertices for u = 1.
 pub(super) fn disk(name: String, loc: SourceLoc) -> MeshDesc {
     let mut m = MeshDesc {
         name,
         loc,
         ..MeshDesc::default()
     };
-    m.positions.push(Vec3::ZERO);
-    m.uvs.push(Vec2::splat(0.5));
-    for i in 0..DISK_SEGMENTS {
-        let phi = std::f32::consts::TAU * i as f32 / DISK_SEGMENTS as f32;
-        let (s, c) = phi.sin_cos();
-        m.positions.push(Vec3::new(c, s, 0.0));
-        m.uvs.push(Vec2::new(0.5 + 0.5 * c, 0.5 + 0.5 * s));
-    }
     m.normals.push(Vec3::Z);
-    for i in 0..DISK_SEGMENTS {
-        let tri = [0, 1 + i, 1 + (i + 1) % DISK_SEGMENTS];
+    let (rings, segments) = (DISK_RINGS, DISK_SEGMENTS);
+    // Ring j (1..=rings) at radius j / rings, columns 0..=segments.
+    let at = |j: u32, i: u32| segments + (j - 1) * (segments + 1) + i;
+    for i in 0..segments {
+        m.positions.push(Vec3::ZERO);
+        m.uvs
+            .push(Vec2::new(0.0, (i as f32 + 0.5) / segments as f32));
+    }
+    for j in 1..=rings {
+        let r = j as f32 / rings as f32;
+        for i in 0..=segments {
+            let v = i as f32 / segments as f32;
+            let (s, c) = (std::f32::consts::TAU * v).sin_cos();
+            m.positions.push(Vec3::new(r * c, r * s, 0.0));
+            m.uvs.push(Vec2::new(r, v));
+        }
+    }
+    let mut push = |tri: [u32; 3]| {
         m.triangles.push(tri);
         m.normal_indices.push([0, 0, 0]);
         m.uv_indices.push(tri);
+    };
+    for i in 0..segments {
+        push([i, at(1, i), at(1, i + 1)]);
+        for j in 1..rings {
+            let (a, b) = (at(j, i), at(j, i + 1));
+            let (c, d) = (at(j + 1, i + 1), at(j + 1, i));
+            push([a, d, c]);
+            push([a, c, b]);
+        }
     }
     m
 }
