@@ -6,25 +6,13 @@ mod common;
 
 use candela_render::camera::framing::CameraMode;
 use candela_render::scene::{Scene, SceneError, SceneOptions};
-use candela_scene::{BsdfDesc, MeshDesc, Projection, SceneDesc};
+use candela_scene::{BsdfDesc, Projection, SceneDesc};
 use glam::{Mat4, Quat, Vec2, Vec3};
 
 /// A large quad in the plane z = 0, seen by `projection` placed at `eye`
 /// looking down -Z (rotated by `turn` about Y).
 fn quad_seen_by(projection: Projection, eye: Vec3, turn: f32) -> SceneDesc {
-    let s = 50.0;
-    let mesh = MeshDesc {
-        name: "wall".into(),
-        positions: vec![
-            Vec3::new(-s, -s, 0.0),
-            Vec3::new(s, -s, 0.0),
-            Vec3::new(s, s, 0.0),
-            Vec3::new(-s, s, 0.0),
-        ],
-        triangles: vec![[0, 1, 2], [0, 2, 3]],
-        material: 0,
-        ..Default::default()
-    };
+    let mesh = common::square_z0("wall", 50.0, 0);
     let mut camera = common::camera_at(eye);
     camera.world_from_camera = Mat4::from_rotation_translation(Quat::from_rotation_y(turn), eye);
     camera.projection = projection;

@@ -10,7 +10,7 @@ mod common;
 use candela_render::integrator::{IntegratorSettings, LightingMode};
 use candela_render::light::LightSelection;
 use candela_scene::{
-    BsdfDesc, EnvironmentDesc, InstanceDesc, MeshDesc, Projection, SceneDesc, SourceLoc, SphereDesc,
+    BsdfDesc, EnvironmentDesc, InstanceDesc, Projection, SceneDesc, SourceLoc, SphereDesc,
 };
 use common::*;
 use glam::Vec3;
@@ -91,19 +91,6 @@ fn behind_a_hidden_lamp_is_the_surface_it_lights() {
     // hemisphere (a sphere on the normal) and by the sky over the rest:
     // L = rho (E (1 − (r/d)²) + le (r/d)²).
     let (rho, e_sky, le, r, d) = (0.6f32, 0.5f32, 3.0f32, 0.2f32, 0.5f32);
-    let s = 1000.0;
-    let floor = MeshDesc {
-        name: "floor".into(),
-        positions: vec![
-            Vec3::new(-s, -s, 0.0),
-            Vec3::new(s, -s, 0.0),
-            Vec3::new(s, s, 0.0),
-            Vec3::new(-s, s, 0.0),
-        ],
-        triangles: vec![[0, 1, 2], [0, 2, 3]],
-        material: 0,
-        ..Default::default()
-    };
     let mut camera = camera_at(Vec3::new(0.0, 0.0, 3.0));
     camera.projection = Projection::Perspective {
         xfov_deg: 0.5,
@@ -111,7 +98,7 @@ fn behind_a_hidden_lamp_is_the_surface_it_lights() {
     };
     let desc = SceneDesc {
         cameras: vec![camera],
-        meshes: vec![floor],
+        meshes: vec![square_z0("floor", 1000.0, 0)],
         instances: vec![InstanceDesc::identity(0, SourceLoc::default())],
         spheres: vec![sphere(Vec3::new(0.0, 0.0, d), r, 1)],
         materials: vec![

@@ -35,6 +35,23 @@ pub fn material(name: &str, bsdf: BsdfDesc, emission: Option<Vec3>) -> MaterialD
     }
 }
 
+/// A square of half-size `s` in the plane z = 0, facing +Z, of
+/// `material` (drawn through an instance, as a loader would place it).
+pub fn square_z0(name: &str, s: f32, material: usize) -> MeshDesc {
+    MeshDesc {
+        name: name.into(),
+        positions: vec![
+            Vec3::new(-s, -s, 0.0),
+            Vec3::new(s, -s, 0.0),
+            Vec3::new(s, s, 0.0),
+            Vec3::new(-s, s, 0.0),
+        ],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        material,
+        ..Default::default()
+    }
+}
+
 /// A camera at `eye` looking down -Z with a 60° field of view.
 pub fn camera_at(eye: Vec3) -> CameraDesc {
     CameraDesc {
