@@ -75,13 +75,7 @@ fn write_rgb8(
 /// [`ImageError::Io`] if the file cannot be opened, [`ImageError::Read`] if
 /// it is not a valid PNG; both name the file.
 pub fn read_png(path: impl AsRef<Path>) -> Result<RgbImage, ImageError> {
-    let stored = read_png_stored(path)?;
-    let pixels = stored
-        .pixels
-        .iter()
-        .map(|p| [srgb_decode(p[0]), srgb_decode(p[1]), srgb_decode(p[2])])
-        .collect();
-    RgbImage::from_pixels(stored.width, stored.height, pixels)
+    read_png_stored(path)?.srgb_decoded()
 }
 
 /// A PNG's stored values, each scaled to [0, 1] (`v / 255` or `v / 65535`)
@@ -98,6 +92,22 @@ pub struct StoredPng {
     pub pixels: Vec<[f32; 4]>,
     /// Whether the file has an alpha channel.
     pub has_alpha: bool,
+}
+
+impl StoredPng {
+    /// The colour decoded from sRGB to linear RGB, alpha dropped.
+    ///
+    /// # Errors
+    /// As [`RgbImage::from_pixels`], when `pixels` does not hold
+    /// `width × height` entries (never for an image this crate read).
+    pub fn srgb_decoded(&self) -> Result<RgbImage, ImageError> {
+        let pixels = self
+            .pixels
+            .iter()
+            .map(|p| [srgb_decode(p[0]), srgb_decode(p[1]), srgb_decode(p[2])])
+            .collect();
+        RgbImage::from_pixels(self.width, self.height, pixels)
+    }
 }
 
 /// Reads a PNG's stored values (see [`StoredPng`]).

@@ -76,15 +76,7 @@ pub fn read_linear_image(path: &Path) -> Result<RgbImage, TextureError> {
     match extension(path).as_deref() {
         Some("exr") => Ok(read_exr(path)?),
         Some("hdr") => Ok(read_radiance_hdr(path)?),
-        _ if is_stored_format(path) => {
-            let stored = read_stored_values(path)?;
-            let pixels = stored
-                .pixels
-                .iter()
-                .map(|p| [srgb_decode(p[0]), srgb_decode(p[1]), srgb_decode(p[2])])
-                .collect();
-            Ok(RgbImage::from_pixels(stored.width, stored.height, pixels)?)
-        }
+        _ if is_stored_format(path) => Ok(read_stored_values(path)?.srgb_decoded()?),
         _ => Err(TextureError::UnknownFormat(path.to_path_buf())),
     }
 }
