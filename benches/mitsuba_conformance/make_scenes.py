@@ -255,6 +255,64 @@ DIELECTRICS = [
 </bsdf>"""),
 ]
 
+BLENDS = [
+    ("blend diffuse + roughconductor Au, w 0.3", """<bsdf type="blendbsdf">
+    <float name="weight" value="0.3"/>
+    <bsdf type="diffuse">
+        <rgb name="reflectance" value="0.7, 0.15, 0.1"/>
+    </bsdf>
+    <bsdf type="roughconductor">
+        <string name="material" value="Au"/>
+        <string name="distribution" value="ggx"/>
+        <float name="alpha" value="0.2"/>
+    </bsdf>
+</bsdf>"""),
+    # A one-value checkerboard: Mitsuba swaps its colours (as for roughness).
+    ("blend with a checkerboard weight", """<bsdf type="blendbsdf">
+    <texture type="checkerboard" name="weight">
+        <float name="color0" value="0.1"/>
+        <float name="color1" value="0.9"/>
+        <transform name="to_uv">
+            <scale x="6" y="3"/>
+        </transform>
+    </texture>
+    <bsdf type="diffuse">
+        <rgb name="reflectance" value="0.1, 0.3, 0.7"/>
+    </bsdf>
+    <bsdf type="roughplastic">
+        <float name="alpha" value="0.1"/>
+        <rgb name="diffuse_reflectance" value="0.8, 0.7, 0.1"/>
+    </bsdf>
+</bsdf>"""),
+    # Delta and smooth lobes together; the diffuse part is black inside.
+    ("blend dielectric + diffuse, w 0.5", """<bsdf type="blendbsdf">
+    <float name="weight" value="0.5"/>
+    <bsdf type="dielectric">
+        <float name="int_ior" value="1.5"/>
+    </bsdf>
+    <bsdf type="diffuse">
+        <rgb name="reflectance" value="0.2, 0.6, 0.2"/>
+    </bsdf>
+</bsdf>"""),
+    ("nested: roughplastic + (conductor Ag + diffuse)", """<bsdf type="blendbsdf">
+    <float name="weight" value="0.6"/>
+    <bsdf type="roughplastic">
+        <string name="distribution" value="ggx"/>
+        <float name="alpha" value="0.3"/>
+        <rgb name="diffuse_reflectance" value="0.6, 0.3, 0.6"/>
+    </bsdf>
+    <bsdf type="blendbsdf">
+        <float name="weight" value="0.5"/>
+        <bsdf type="conductor">
+            <string name="material" value="Ag"/>
+        </bsdf>
+        <bsdf type="diffuse">
+            <rgb name="reflectance" value="0.8, 0.8, 0.2"/>
+        </bsdf>
+    </bsdf>
+</bsdf>"""),
+]
+
 def bsdf_scene(name, comment, items):
     text = header(comment) + cornell()
     for i, (label, b) in enumerate(items):
@@ -266,6 +324,7 @@ bsdf_scene("bsdf-plastic", "Plastic, rough plastic (beckmann, ggx) and a thin di
 bsdf_scene("bsdf-conductor", "Conductors: named (Au), eta/k, anisotropic rough (Cu), rough beckmann (Ag).", CONDUCTORS)
 bsdf_scene("bsdf-dielectric", "Smooth and rough dielectrics: glass, named IORs, beckmann, tinted ggx.", DIELECTRICS)
 bsdf_scene("bsdf-principled", "The principled BSDF with four parameter sets.", PRINCIPLED)
+bsdf_scene("bsdf-blend", "blendbsdf: a constant and a textured weight, delta with smooth parts, nested.", BLENDS)
 
 # One-sided BSDFs seen from the back, twosided, flip_normals: rectangles
 # standing in the box facing away from / toward the camera.
