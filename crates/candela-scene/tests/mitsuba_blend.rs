@@ -108,8 +108,10 @@ fn twosided_around_a_blend_makes_its_parts_two_sided() {
 
 #[test]
 fn a_checkerboard_weight_is_read_as_mitsuba_reads_one_value() {
-    // Mitsuba's one-value checkerboard swaps the colours (as for
-    // roughness) and reads an RGB colour by the mean of its channels.
+    // Mitsuba's one-value checkerboard swaps the colours, which in
+    // Candela's mirrored v keeps them in the description's order (as for
+    // roughness, `mitsuba/textures.rs`), and reads an RGB colour by the
+    // mean of its channels (0.5 here; its luminance would be 0.39).
     let l = try_load(
         "mitsuba-blend-checker",
         r#"<shape type="sphere"><bsdf type="blendbsdf">
@@ -126,7 +128,7 @@ fn a_checkerboard_weight_is_read_as_mitsuba_reads_one_value() {
     let TextureSource::Checkerboard { color0, color1 } = t.source else {
         panic!("{t:?}");
     };
-    assert_eq!((color0, color1), (Vec3::splat(0.1), Vec3::splat(0.5)));
+    assert_eq!((color0, color1), (Vec3::splat(0.5), Vec3::splat(0.1)));
 }
 
 #[test]
@@ -153,7 +155,7 @@ fn bad_blends_are_errors_naming_the_element() {
         (
             r#"<bsdf type="blendbsdf" id="b"><float name="weight" value="nan"/>
                 <bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>"#,
-            "weight",
+            "not finite",
         ),
     ] {
         let err = try_load("mitsuba-blend-bad", body, &LoadOptions::default()).unwrap_err();
@@ -161,7 +163,10 @@ fn bad_blends_are_errors_naming_the_element() {
         assert!(text.contains(says) && text.contains("scene.xml"), "{text}");
         assert!(err.loc.is_some() && !text.contains('\n'), "{text}");
         assert!(
-            matches!(err.kind, ErrorKind::BadValue | ErrorKind::MissingElement),
+            matches!(
+                err.kind,
+                ErrorKind::BadValue | ErrorKind::MissingElement | ErrorKind::NonFinite
+            ),
             "{err:?}"
         );
     }

@@ -78,10 +78,8 @@ impl Builder {
         };
         let (value, texture) = self.color(doc, node, "weight", Vec3::splat(0.5))?;
         set(textures, TextureSlot::Weight, texture);
+        // Finite: the value parser refuses NaN and infinities.
         let w = value.element_sum() / 3.0;
-        if w.is_nan() {
-            return Err(doc.err(p, ErrorKind::BadValue, "blendbsdf weight is not a number"));
-        }
         if !(0.0..=1.0).contains(&w) {
             self.warn(
                 doc,
