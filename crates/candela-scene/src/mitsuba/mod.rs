@@ -16,6 +16,7 @@
 //! supported one (or skipped) and reported once by name; a type Mitsuba does
 //! not have is an error.
 
+mod blend;
 mod bsdfs;
 mod doc;
 mod emitters;
