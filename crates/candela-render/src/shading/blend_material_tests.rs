@@ -6,8 +6,8 @@ use super::sides_tests::{hit, square};
 use crate::scene::{Scene, SceneOptions};
 use crate::shape::SurfaceHit;
 use candela_scene::{
-    BlendDesc, BsdfDesc, ColorSpace, InstanceDesc, MaterialDesc, SceneDesc, Sides, SourceLoc,
-    TextureFilter, TextureRef, TextureSlot, TextureSource, UvTransform,
+    BlendDesc, BsdfDesc, InstanceDesc, MaterialDesc, SceneDesc, Sides, SourceLoc, TextureRef,
+    TextureSlot,
 };
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
@@ -37,17 +37,7 @@ fn scene() -> Scene {
     let mut textured = blend(0.5);
     textured.textures.set(
         TextureSlot::Weight,
-        TextureRef {
-            source: TextureSource::Checkerboard {
-                color0: Vec3::splat(CHECKER.0),
-                color1: Vec3::splat(CHECKER.1),
-            },
-            color_space: ColorSpace::Linear,
-            scale: 1.0,
-            channel: None,
-            filter: TextureFilter::Bilinear,
-            uv: UvTransform::IDENTITY,
-        },
+        TextureRef::checkerboard(Vec3::splat(CHECKER.0), Vec3::splat(CHECKER.1)),
     );
     let desc = SceneDesc {
         instances: (0..2)
