@@ -248,24 +248,39 @@ impl Material {
 
     /// The BSDF at a hit point, on the side the hit sees
     /// ([`Material::facing`]), with every textured parameter read at the
-    /// hit's `uv`; `None` where nothing scatters.
-    #[inline]
+    /// hit's `uv`; `None` where nothing scatters. A copy: see
+    /// [`Material::bsdf_in`] for the borrow the render loop takes.
     pub fn bsdf_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
+        self.bsdf_in(hit, &mut None).cloned()
+    }
+
+    /// [`Material::bsdf_at`] without a copy: the material's own BSDF,
+    /// borrowed, where nothing changes it at the hit; else the BSDF made
+    /// for the hit (textured, or a blend's), stored in `made` and
+    /// borrowed from there. `Bsdf` is not `Copy` (a blend boxes its
+    /// parts), so a copy per vertex would be a clone through a `match` on
+    /// the model; the borrow costs nothing.
+    #[inline]
+    pub fn bsdf_in<'a>(&'a self, hit: &SurfaceHit, made: &'a mut Option<Bsdf>) -> Option<&'a Bsdf> {
         let side = self.facing(hit)?;
-        if let Some(parts) = &side.parts {
-            return side.blend_at(parts, hit);
+        if side.parts.is_some() {
+            return Some(made.insert(side.blend_at(hit)?));
         }
         let bsdf = side.bsdf.as_ref()?;
         if !side.textures.textures_bsdf() {
-            return Some(bsdf.clone()); // untextured: no call through `apply`
+            return Some(bsdf); // untextured: no call, no copy
         }
-        Some(side.textures.apply(bsdf.clone(), hit.texture_point()))
+        Some(made.insert(side.textures.apply(bsdf.clone(), hit.texture_point())))
     }
 
     /// A blend's BSDF at `hit`: each part's own BSDF there (on the side the
     /// hit sees, textured; none where that part is black), mixed by the
-    /// weight there. `None` when both parts are black.
-    fn blend_at(&self, parts: &[Material; 2], hit: &SurfaceHit) -> Option<Bsdf> {
+    /// weight there. `None` when both parts are black (or this is no
+    /// blend). Out of line: it recurses through [`Material::bsdf_at`],
+    /// which must stay small enough to inline into the render loop.
+    #[inline(never)]
+    fn blend_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
+        let parts = self.parts.as_ref()?;
         let [a, b] = parts.each_ref().map(|p| p.bsdf_at(hit));
         if a.is_none() && b.is_none() {
             return None;

@@ -12,6 +12,12 @@
 //! weight, is the part's own). `f` and `pdf` only ever see the smooth
 //! lobes, since the parts' delta lobes return zero there.
 //!
+//! Every method is out of line (`#[inline(never)]`): each recurses
+//! through [`Bsdf`]'s dispatch, and out of line the recursion stays in
+//! these calls while `Bsdf`'s own dispatchers (`flags`, `f`, `sample`, …)
+//! stay as small as they are without blends, for the render loop to
+//! inline or call cheaply.
+//!
 //! A part may be absent: black, as a one-sided part seen from behind is.
 //! Picking it ends the path (the sample carries no energy), which keeps
 //! the estimate unbiased with `pdf` the density of what `sample` returns.
@@ -55,6 +61,7 @@ impl Blend {
     }
 
     /// The union of the parts' flags.
+    #[inline(never)]
     pub fn flags(&self) -> BsdfFlags {
         self.weighted()
             .fold(BsdfFlags::EMPTY, |acc, (_, p)| acc | p.flags())
@@ -62,6 +69,7 @@ impl Blend {
 
     /// The mixture's value (cosine excluded) in the given mode: each part
     /// takes its own adjoint factor (their media may differ).
+    #[inline(never)]
     pub fn f_mode(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Vec3 {
         self.weighted()
             .map(|(w, p)| w * p.f_mode(wo, wi, mode))
@@ -69,12 +77,14 @@ impl Blend {
     }
 
     /// The density with which [`Blend::sample_mode`] returns a smooth `wi`.
+    #[inline(never)]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         self.weighted().map(|(w, p)| w * p.pdf(wo, wi)).sum()
     }
 
     /// Picks a part with `u1`, samples it with the rest of `u1` and `u2`,
     /// and values the sample as the module docs say.
+    #[inline(never)]
     pub fn sample_mode(
         &self,
         wo: Vec3,
@@ -106,11 +116,13 @@ impl Blend {
     }
 
     /// The parts' albedos, mixed.
+    #[inline(never)]
     pub fn albedo(&self) -> Vec3 {
         self.weighted().map(|(w, p)| w * p.albedo()).sum()
     }
 
     /// Whether either part is anisotropic.
+    #[inline(never)]
     pub fn is_anisotropic(&self) -> bool {
         self.weighted().any(|(_, p)| p.is_anisotropic())
     }
@@ -119,6 +131,7 @@ impl Blend {
     /// (1 when neither does). Only Russian roulette reads it after a
     /// transmission (to judge a path's throughput without the refraction
     /// factor), so taking one part's is a heuristic, never a bias.
+    #[inline(never)]
     pub fn refraction_eta2(&self, wo: Vec3) -> f32 {
         self.weighted()
             .map(|(_, p)| p.refraction_eta2(wo))
