@@ -7,7 +7,7 @@ use crate::scene::{Scene, SceneOptions};
 use crate::shape::SurfaceHit;
 use candela_scene::{
     BlendDesc, BsdfDesc, InstanceDesc, MaterialDesc, SceneDesc, Sides, SourceLoc, TextureRef,
-    TextureSlot,
+    TextureSlot, TextureSource,
 };
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
