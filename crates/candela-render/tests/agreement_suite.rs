@@ -164,7 +164,7 @@ fn ci_cases() -> Vec<Case> {
             seed: 14,
         },
         Case {
-            name: "bsdf-blend (Mitsuba blendbsdf: textured weight, delta beside smooth parts, nested)",
+            name: "bsdf-blend (blendbsdf: textured weight, delta beside smooth parts, nested)",
             scene: bsdf_blend,
             max_depth: 3,
             spp: 8,
