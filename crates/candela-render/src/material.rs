@@ -10,7 +10,8 @@
 //! never dropped silently.
 
 use crate::bsdf::{
-    Bsdf, Masking, MetallicRoughness, MicrofacetDistribution, Plastic, Principled, RoughPlastic,
+    Blend, Bsdf, Masking, MetallicRoughness, MicrofacetDistribution, Plastic, Principled,
+    RoughPlastic,
 };
 use crate::shading::MaterialTextures;
 use crate::shape::SurfaceHit;
@@ -39,6 +40,11 @@ pub struct Material {
     /// integrators' closest-hit queries, which add its emission and go on
     /// past it (`scene/visibility.rs`).
     pub invisible: bool,
+    /// For a blend, its two parts as materials (their BSDFs, textures and
+    /// sides), mixed per hit by [`Material::bsdf_at`]; `bsdf` then holds
+    /// the blend of their untextured front BSDFs (its weight the
+    /// constant, its flags the union).
+    pub parts: Option<Box<[Material; 2]>>,
 }
 
 /// What a surface does seen from behind its shading normal.
@@ -67,6 +73,7 @@ impl Material {
         textures_cache: &mut TextureCache,
     ) -> (Material, Vec<Unsupported>) {
         let mut unsupported = Vec::new();
+        let mut parts = None;
         let bsdf = match desc.bsdf {
             BsdfDesc::Diffuse { albedo } => Some(Bsdf::Diffuse {
                 albedo: albedo.clamp(Vec3::ZERO, Vec3::ONE),
@@ -166,6 +173,17 @@ impl Material {
                     .with_specular(specular, specular_color),
             )),
             BsdfDesc::Principled(p) => Some(Bsdf::Principled(Principled::new(p))),
+            BsdfDesc::Blend(ref blend) => {
+                let [a, b] = blend.parts.each_ref().map(|part| {
+                    let (mut m, more) = Material::from_desc(part, textures_cache);
+                    unsupported.extend(more);
+                    m.emission = None;
+                    m
+                });
+                let template = Blend::new(blend.weight, a.bsdf.clone(), b.bsdf.clone());
+                parts = Some(Box::new([a, b]));
+                Some(Bsdf::Blend(Box::new(template)))
+            }
         };
         let (textures, unusable) =
             MaterialTextures::from_slots(&desc.textures, bsdf.as_ref(), textures_cache);
@@ -192,7 +210,10 @@ impl Material {
                 Back::Other(Box::new(back))
             }
         };
-        let anisotropic = bsdf.is_some_and(|b| b.is_anisotropic());
+        let anisotropic = bsdf.as_ref().is_some_and(Bsdf::is_anisotropic)
+            || parts
+                .as_ref()
+                .is_some_and(|p| p.iter().any(Material::any_side_anisotropic));
         (
             Material {
                 bsdf,
@@ -201,6 +222,7 @@ impl Material {
                 back,
                 anisotropic,
                 invisible: desc.bsdf == BsdfDesc::Null,
+                parts,
             },
             unsupported,
         )
@@ -226,15 +248,54 @@ impl Material {
 
     /// The BSDF at a hit point, on the side the hit sees
     /// ([`Material::facing`]), with every textured parameter read at the
-    /// hit's `uv`; `None` where nothing scatters.
-    #[inline]
+    /// hit's `uv`; `None` where nothing scatters. A copy: see
+    /// [`Material::bsdf_in`] for the borrow the render loop takes.
     pub fn bsdf_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
+        self.bsdf_in(hit, &mut None).cloned()
+    }
+
+    /// [`Material::bsdf_at`] without a copy: the material's own BSDF,
+    /// borrowed, where nothing changes it at the hit; else the BSDF made
+    /// for the hit (textured, or a blend's), stored in `made` and
+    /// borrowed from there. `Bsdf` is not `Copy` (a blend boxes its
+    /// parts), so a copy per vertex would be a clone through a `match` on
+    /// the model; the borrow costs nothing.
+    #[inline]
+    pub fn bsdf_in<'a>(&'a self, hit: &SurfaceHit, made: &'a mut Option<Bsdf>) -> Option<&'a Bsdf> {
         let side = self.facing(hit)?;
-        let bsdf = side.bsdf?;
-        if !side.textures.textures_bsdf() {
-            return Some(bsdf); // untextured: no call, no copy through `apply`
+        if side.parts.is_some() {
+            return Some(made.insert(side.blend_at(hit)?));
         }
-        Some(side.textures.apply(bsdf, hit.texture_point()))
+        let bsdf = side.bsdf.as_ref()?;
+        if !side.textures.textures_bsdf() {
+            return Some(bsdf); // untextured: no call, no copy
+        }
+        Some(made.insert(side.textures.apply(bsdf.clone(), hit.texture_point())))
+    }
+
+    /// A blend's BSDF at `hit`: each part's own BSDF there (on the side the
+    /// hit sees, textured; none where that part is black), mixed by the
+    /// weight there. `None` when both parts are black (or this is no
+    /// blend). Out of line: it recurses through [`Material::bsdf_at`],
+    /// which must stay small enough to inline into the render loop.
+    #[inline(never)]
+    fn blend_at(&self, hit: &SurfaceHit) -> Option<Bsdf> {
+        let parts = self.parts.as_ref()?;
+        let [a, b] = parts.each_ref().map(|p| p.bsdf_at(hit));
+        if a.is_none() && b.is_none() {
+            return None;
+        }
+        let weight = match (&self.textures.weight, &self.bsdf) {
+            (Some(t), _) => t.color(hit.texture_point()).dot(LUMINANCE),
+            (None, Some(Bsdf::Blend(template))) => template.weight,
+            (None, _) => 0.0,
+        };
+        Some(Bsdf::Blend(Box::new(Blend::new(weight, a, b))))
+    }
+
+    /// Whether the BSDF on either side is anisotropic.
+    fn any_side_anisotropic(&self) -> bool {
+        self.anisotropic || matches!(&self.back, Back::Other(b) if b.any_side_anisotropic())
     }
 
     /// The radiance emitted at a point (on the emitting side): the
@@ -244,6 +305,10 @@ impl Material {
         self.textures.emission(at).or(self.emission)
     }
 }
+
+/// Rec. 709 luminance weights: how Mitsuba reads a colour texture as one
+/// value (a blend's weight).
+const LUMINANCE: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
 
 /// CS184 glass: smooth, or with `roughness` r > 0 a Beckmann rough
 /// dielectric of α = r (the convention of CS184's `<microfacet>` alpha).

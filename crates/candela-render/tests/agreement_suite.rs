@@ -16,7 +16,8 @@
 //! textured emission behind stochastic cut-outs (the textured lamp), and
 //! Mitsuba's normal and bump maps, whose bump shadowing is not reciprocal
 //! (tex-maps: light and camera subpaths must attenuate the same side; its
-//! normals are bent rather than mirrored there, see `tex_maps_bent`).
+//! normals are bent rather than mirrored there, see `tex_maps_bent`), and
+//! Mitsuba's `blendbsdf`, a mixture whose parts may be delta (bsdf-blend).
 //!
 //! `cargo test --test agreement_suite` runs the CI table (about a minute on
 //! two cores); `cargo test --test agreement_suite -- --ignored` runs the
@@ -161,6 +162,14 @@ fn ci_cases() -> Vec<Case> {
             spp: 8,
             excluded: &[],
             seed: 14,
+        },
+        Case {
+            name: "bsdf-blend (blendbsdf: textured weight, delta beside smooth parts, nested)",
+            scene: bsdf_blend,
+            max_depth: 3,
+            spp: 8,
+            excluded: &[(Method::LightTracer, LIGHT_TRACER_SPECULAR)],
+            seed: 15,
         },
     ]
 }

@@ -61,11 +61,15 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         "{}",
         albedo(&m)
     );
-    // A Lambertian surface has no roughness or metalness; every other slot
-    // drives something.
+    // A Lambertian surface has no roughness, metalness or blend weight;
+    // every other slot drives something.
     let names: Vec<&str> = unsupported.iter().map(|u| u.0.as_str()).collect();
-    assert_eq!(names.len(), 2, "{names:?}");
-    for slot in [TextureSlot::Roughness, TextureSlot::Metalness] {
+    assert_eq!(names.len(), 3, "{names:?}");
+    for slot in [
+        TextureSlot::Roughness,
+        TextureSlot::Metalness,
+        TextureSlot::Weight,
+    ] {
         assert!(
             names
                 .iter()
@@ -100,8 +104,8 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         other => panic!("{other:?}"),
     }
 
-    // The glTF model takes every slot; a pure emitter only emission and
-    // opacity.
+    // The glTF model takes every slot but a blend's weight; a pure emitter
+    // only emission and opacity.
     let mut gltf = desc.clone();
     gltf.bsdf = BsdfDesc::MetallicRoughness {
         base_color: Vec3::ONE,
@@ -113,14 +117,17 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         specular_color: Vec3::ONE,
     };
     let (_, unsupported) = Material::from_desc(&gltf, &mut cache);
-    assert!(unsupported.is_empty(), "{unsupported:?}");
+    assert!(
+        unsupported.len() == 1 && unsupported[0].0.contains(TextureSlot::Weight.name()),
+        "{unsupported:?}"
+    );
     let mut lamp = desc.clone();
     lamp.bsdf = BsdfDesc::Black;
     let (m, unsupported) = Material::from_desc(&lamp, &mut cache);
     assert_eq!(
         unsupported.len(),
-        5,
-        "colour, roughness, metalness, normal, bump: {unsupported:?}"
+        6,
+        "colour, roughness, metalness, normal, bump, blend weight: {unsupported:?}"
     );
     assert!(m.emission.is_some(), "the emission texture makes it a lamp");
     std::fs::remove_dir_all(&dir).ok();

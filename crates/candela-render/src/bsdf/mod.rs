@@ -40,6 +40,9 @@
 //!   that lobe (1 for a single lobe), so `weight()` works uniformly.
 
 mod beckmann;
+mod blend;
+#[cfg(test)]
+mod blend_tests;
 mod coating;
 mod diffuse;
 #[cfg(test)]
@@ -84,6 +87,7 @@ mod transport;
 #[cfg(test)]
 mod transport_tests;
 
+pub use blend::Blend;
 pub use coating::InternalReflectance;
 pub use distribution::Masking;
 pub use distribution::{MicrofacetDistribution, MIN_ALPHA};
@@ -152,9 +156,10 @@ impl BsdfSample {
     }
 }
 
-/// The closed set of scattering models, as plain values: cheap to copy,
-/// `Sync`, and dispatched by `match` without virtual calls.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The closed set of scattering models, as plain values: cheap to clone
+/// (a copy of bytes but for a blend's boxed parts), `Sync`, and dispatched
+/// by `match` without virtual calls.
+#[derive(Clone, Debug, PartialEq)]
 pub enum Bsdf {
     /// Lambertian reflection: f = albedo / π.
     Diffuse {
@@ -258,6 +263,9 @@ pub enum Bsdf {
     /// specular (metallic and tinted), clearcoat and rough specular
     /// transmission (see `principled/mod.rs`).
     Principled(Principled),
+    /// A mixture of two BSDFs (Mitsuba's `blendbsdf`), boxed so the enum
+    /// stays as small as its largest single model (see `blend.rs`).
+    Blend(Box<Blend>),
 }
 
 impl Bsdf {
@@ -276,6 +284,7 @@ impl Bsdf {
             Bsdf::Microfacet { .. } => "rough conductor",
             Bsdf::MetallicRoughness(_) => "glTF metallic-roughness",
             Bsdf::Principled(_) => "principled",
+            Bsdf::Blend(_) => "blend",
         }
     }
 
@@ -294,6 +303,7 @@ impl Bsdf {
             Bsdf::Microfacet { .. } => microfacet::FLAGS,
             Bsdf::MetallicRoughness(m) => m.flags(),
             Bsdf::Principled(p) => p.flags(),
+            Bsdf::Blend(b) => b.flags(),
         }
     }
 
@@ -306,6 +316,7 @@ impl Bsdf {
                 ax != ay
             }
             Bsdf::Principled(p) => p.is_anisotropic(),
+            Bsdf::Blend(b) => b.is_anisotropic(),
             _ => false,
         }
     }
@@ -331,8 +342,8 @@ impl Bsdf {
     /// [`Bsdf::f`] for any model, dispatched out of line.
     #[inline(never)]
     fn f_any(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        match *self {
-            Bsdf::Diffuse { albedo } => diffuse::f(albedo, wo, wi),
+        match self {
+            Bsdf::Diffuse { albedo } => diffuse::f(*albedo, wo, wi),
             Bsdf::Mirror { .. }
             | Bsdf::Glass { .. }
             | Bsdf::Refraction { .. }
@@ -346,9 +357,10 @@ impl Bsdf {
                 masking,
                 eta,
                 k,
-            } => microfacet::f(distribution, masking, eta, k, wo, wi),
+            } => microfacet::f(*distribution, *masking, *eta, *k, wo, wi),
             Bsdf::MetallicRoughness(m) => m.f(wo, wi),
             Bsdf::Principled(p) => p.f(wo, wi),
+            Bsdf::Blend(b) => b.f_mode(wo, wi, TransportMode::Radiance),
         }
     }
 
@@ -367,7 +379,8 @@ impl Bsdf {
             | Bsdf::Plastic(_)
             | Bsdf::RoughPlastic(_)
             | Bsdf::MetallicRoughness(_)
-            | Bsdf::Principled(_) => true,
+            | Bsdf::Principled(_)
+            | Bsdf::Blend(_) => true,
         }
     }
 
@@ -387,6 +400,7 @@ impl Bsdf {
     #[inline(never)]
     fn sample_any(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
         match *self {
+            Bsdf::Blend(ref b) => b.sample_mode(wo, u1, u2, TransportMode::Radiance),
             Bsdf::Diffuse { albedo } => diffuse::sample(albedo, wo, u2),
             Bsdf::Mirror { reflectance } => specular::sample_mirror(reflectance, wo),
             Bsdf::Glass {
@@ -444,6 +458,7 @@ impl Bsdf {
             Bsdf::Microfacet { distribution, .. } => microfacet::pdf(distribution, wo, wi),
             Bsdf::MetallicRoughness(m) => m.pdf(wo, wi),
             Bsdf::Principled(p) => p.pdf(wo, wi),
+            Bsdf::Blend(ref b) => b.pdf(wo, wi),
         }
     }
 
@@ -465,6 +480,7 @@ impl Bsdf {
             }
             Bsdf::MetallicRoughness(m) => m.albedo(),
             Bsdf::Principled(p) => p.albedo(),
+            Bsdf::Blend(ref b) => b.albedo(),
         }
     }
 }

@@ -51,6 +51,7 @@ impl Bsdf {
             | Bsdf::RoughGlass { ior, .. } => ior,
             Bsdf::MetallicRoughness(m) => m.ior(),
             Bsdf::Principled(p) => p.ior(),
+            Bsdf::Blend(ref b) => return b.refraction_eta2(wo),
             Bsdf::Diffuse { .. }
             | Bsdf::Mirror { .. }
             | Bsdf::Microfacet { .. }
@@ -65,6 +66,9 @@ impl Bsdf {
 
     /// [`Bsdf::f`] for the given transport mode (cosine excluded).
     pub fn f_mode(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Vec3 {
+        if let Bsdf::Blend(b) = self {
+            return b.f_mode(wo, wi, mode); // each part its own factor
+        }
         self.f(wo, wi) * self.adjoint_scale(wo, wi, mode)
     }
 
@@ -77,6 +81,9 @@ impl Bsdf {
         u2: Vec2,
         mode: TransportMode,
     ) -> Option<BsdfSample> {
+        if let Bsdf::Blend(b) = self {
+            return b.sample_mode(wo, u1, u2, mode); // each part its own factor
+        }
         let mut s = self.sample(wo, u1, u2)?;
         s.f *= self.adjoint_scale(wo, s.wi, mode);
         Some(s)

@@ -7,7 +7,9 @@ use glam::{Vec2, Vec3};
 
 use super::transport::{shading_normal_correction, TransportMode};
 use super::Masking;
-use super::{Bsdf, MetallicRoughness, MicrofacetDistribution, Principled, PrincipledParameters};
+use super::{
+    Blend, Bsdf, MetallicRoughness, MicrofacetDistribution, Principled, PrincipledParameters,
+};
 use crate::geometry::Frame;
 use crate::sampling::warp::square_to_uniform_sphere;
 use crate::sampling::{Sampler, SamplerKind};
@@ -82,6 +84,27 @@ fn transmitting_bsdfs() -> Vec<(&'static str, Bsdf)> {
                 clearcoat: 0.5,
                 ..PrincipledParameters::default()
             })),
+        ),
+        (
+            // Each part takes its own η²: no one factor fits both.
+            "blend of rough glasses of two IORs",
+            Bsdf::Blend(Box::new(Blend::new(
+                0.4,
+                Some(Bsdf::RoughGlass {
+                    distribution: MicrofacetDistribution::ggx(0.3),
+                    masking: Masking::HeightCorrelated,
+                    reflectance: Vec3::ONE,
+                    transmittance: Vec3::new(1.0, 0.7, 0.9),
+                    ior: 1.5,
+                }),
+                Some(Bsdf::RoughGlass {
+                    distribution: MicrofacetDistribution::beckmann(0.4),
+                    masking: Masking::HeightCorrelated,
+                    reflectance: Vec3::ONE,
+                    transmittance: Vec3::ONE,
+                    ior: 1.2,
+                }),
+            ))),
         ),
     ]
 }

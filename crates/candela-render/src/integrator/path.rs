@@ -141,23 +141,29 @@ pub fn path_radiance<R: PathRecorder>(
             ray = continue_past(&ray, &hit);
             continue;
         }
-        // The first vertex's BSDF serves the AOVs and the path alike.
-        let first_bsdf = (depth == 0).then(|| {
-            let bsdf = material.bsdf_at(&hit);
-            aov.record_bsdf(&hit, bsdf.as_ref());
-            bsdf
-        });
+        // The first vertex's BSDF serves the AOVs and the path alike; past
+        // the last bounce it is not read. A BSDF made for this hit (textured,
+        // a blend) lives in `made`; an untextured one is borrowed.
+        let mut made = None;
+        let bsdf = if depth == 0 || depth < max_depth {
+            material.bsdf_in(&hit, &mut made)
+        } else {
+            None
+        };
+        if depth == 0 {
+            aov.record_bsdf(&hit, bsdf);
+        }
         if depth >= max_depth {
             break PathEnd::MaxDepth;
         }
-        let Some(bsdf) = first_bsdf.unwrap_or_else(|| material.bsdf_at(&hit)) else {
+        let Some(bsdf) = bsdf else {
             break PathEnd::Absorbed; // a pure emitter absorbs
         };
         let frame = shading_frame(scene, &hit, material);
         let wo = frame.to_local(hit.wo);
         // Where lights are chosen for at this vertex: its light samples,
         // and the MIS weight of an emitter its bounce finds.
-        let receiver = light_context(&hit, &bsdf);
+        let receiver = light_context(&hit, bsdf);
         // Offset origins of the shadow rays, which the bounce reuses.
         let mut origins = SpawnOrigins::default();
         if !bsdf.flags().is_specular() {
@@ -167,7 +173,7 @@ pub fn path_radiance<R: PathRecorder>(
                     &hit,
                     &frame,
                     wo,
-                    &bsdf,
+                    bsdf,
                     &receiver,
                     depth,
                     settings,
@@ -191,7 +197,7 @@ pub fn path_radiance<R: PathRecorder>(
             0.0
         };
         let u2 = sampler.next_2d();
-        let (wi, s) = match sample_scatter(&bsdf, &frame, hit.ng, wo, u1, u2) {
+        let (wi, s) = match sample_scatter(bsdf, &frame, hit.ng, wo, u1, u2) {
             Ok(scattered) => scattered,
             Err(NoScatter::NoSample) => break PathEnd::NoScatter,
             Err(NoScatter::WrongSide) => break PathEnd::WrongSide,

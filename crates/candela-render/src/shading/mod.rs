@@ -18,6 +18,8 @@ pub mod opacity;
 pub mod textures;
 
 #[cfg(test)]
+mod blend_material_tests;
+#[cfg(test)]
 mod leak_tests;
 #[cfg(test)]
 mod sides_tests;

@@ -28,7 +28,7 @@ fn diffuse(albedo: f32, sides: Sides) -> MaterialDesc {
 
 /// A unit square at z = 0 centred on x = `x`, facing +z (counter-clockwise
 /// seen from +z), with u running along +y and v along −x.
-fn square(x: f32, material: usize) -> MeshDesc {
+pub(super) fn square(x: f32, material: usize) -> MeshDesc {
     let p = |dx: f32, dy: f32| Vec3::new(x + dx, dy, 0.0);
     MeshDesc {
         name: format!("square {material}"),
@@ -79,7 +79,7 @@ fn scene() -> Scene {
 }
 
 /// The hit on square `i` of a ray from the front (+z) or from behind.
-fn hit(scene: &Scene, i: usize, front: bool) -> SurfaceHit {
+pub(super) fn hit(scene: &Scene, i: usize, front: bool) -> SurfaceHit {
     let z = if front { 1.0 } else { -1.0 };
     let target = Vec3::new(2.0 * i as f32 + 0.1, 0.2, 0.0);
     let origin = target + Vec3::new(0.05, -0.1, z);

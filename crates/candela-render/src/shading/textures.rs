@@ -13,11 +13,13 @@
 //! | normal map, bump map | the shading normal (`normal_map.rs`) |
 //! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
 //! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
+//! | blend weight (luminance, clamped to [0, 1]) | a blend's weight (`Material::bsdf_at`, which mixes the parts, each with its own slots) |
 //!
 //! Colours are clamped to [0, 1] and one-value parameters to their ranges
 //! after scaling, so a texture never creates energy. A slot a BSDF has no
 //! parameter for (roughness on a mirror, thin glass or smooth plastic,
-//! metalness outside the glTF and principled models, any of colour/roughness/metalness on a
+//! metalness outside the glTF and principled models, colour or roughness on a blend (its parts
+//! have theirs), a blend weight on anything but a blend, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
 use crate::bsdf::{Bsdf, Masking, MicrofacetDistribution};
@@ -49,6 +51,9 @@ pub struct MaterialTextures {
     pub emission: Option<SlotTexture>,
     /// Opacity.
     pub opacity: Option<SlotTexture>,
+    /// A blend's weight (read by [`crate::material::Material::bsdf_at`],
+    /// which mixes the parts).
+    pub weight: Option<SlotTexture>,
     /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
     /// fraction.
     pub opacity_cutoff: Option<f32>,
@@ -94,6 +99,7 @@ impl MaterialTextures {
             TextureSlot::Bump => &mut self.bump,
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
+            TextureSlot::Weight => &mut self.weight,
         }
     }
 
@@ -260,6 +266,9 @@ fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
     match (slot, bsdf) {
         (TextureSlot::Emission | TextureSlot::Opacity, _) => true,
         (_, None) => false,
+        (TextureSlot::Weight, Some(b)) => matches!(b, Bsdf::Blend(_)),
+        // A blend's own colour and roughness: its parts have theirs.
+        (TextureSlot::Color | TextureSlot::Roughness, Some(Bsdf::Blend(_))) => false,
         (TextureSlot::Color | TextureSlot::Normal | TextureSlot::Bump, Some(_)) => true,
         (TextureSlot::Metalness, Some(b)) => {
             matches!(b, Bsdf::MetallicRoughness(_) | Bsdf::Principled(_))

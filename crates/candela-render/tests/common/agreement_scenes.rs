@@ -2,7 +2,8 @@
 //! the CS184 Cornell boxes (from the shared corpus), the project's Mitsuba
 //! boxes of rough and coated materials, a ball under an environment map,
 //! a thin-lens view, the glass room of `common::glass_room`, and a lamp
-//! with an emission texture seen through a stochastic cut-out screen.
+//! with an emission texture seen through a stochastic cut-out screen, and
+//! Mitsuba's `blendbsdf` (the conformance scene `bsdf-blend`).
 
 use candela_render::camera::framing::CameraMode;
 use candela_render::light::{EnvironmentMap, EnvironmentOptions, ProceduralSky};
@@ -100,6 +101,20 @@ pub fn tex_maps_bent() -> Scene {
         m.textures.perturbation.away_from_viewer = AwayFromViewer::BendTowardViewer;
     }
     build(&desc, &options(CameraMode::File))
+}
+
+/// The Mitsuba conformance scene `benches/mitsuba_conformance/bsdf-blend.xml`
+/// through its own camera: `blendbsdf` with a constant weight over diffuse
+/// and rough gold, a checkerboard weight over diffuse and rough plastic,
+/// a smooth dielectric beside a diffuse part (a delta lobe and a smooth
+/// one in one BSDF), and a blend nested in a blend around a smooth
+/// conductor. Each estimator meets the blend its own way: light samples
+/// see only its smooth parts, BSDF samples pick a part, BDPT's reverse
+/// densities mix both.
+pub fn bsdf_blend() -> Scene {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../benches/mitsuba_conformance/bsdf-blend.xml");
+    build(&load_file(path), &options(CameraMode::File))
 }
 
 /// A unit ball (orange, diffuse) resting on a 20 × 20 grey plane, seen

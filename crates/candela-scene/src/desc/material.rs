@@ -87,11 +87,14 @@ pub enum TextureSlot {
     Emission,
     /// Opacity in [0, 1] (cut-outs); 1 when no texture says otherwise.
     Opacity,
+    /// The weight of a [`BsdfDesc::Blend`]'s second part, in [0, 1] (the
+    /// luminance of a colour texture, as Mitsuba reads one value).
+    Weight,
 }
 
 impl TextureSlot {
     /// Every slot, in declaration order.
-    pub const ALL: [TextureSlot; 7] = [
+    pub const ALL: [TextureSlot; 8] = [
         TextureSlot::Color,
         TextureSlot::Roughness,
         TextureSlot::Metalness,
@@ -99,6 +102,7 @@ impl TextureSlot {
         TextureSlot::Bump,
         TextureSlot::Emission,
         TextureSlot::Opacity,
+        TextureSlot::Weight,
     ];
 
     /// The slot's name in messages.
@@ -111,6 +115,7 @@ impl TextureSlot {
             TextureSlot::Bump => "bump map",
             TextureSlot::Emission => "emission",
             TextureSlot::Opacity => "opacity",
+            TextureSlot::Weight => "blend weight",
         }
     }
 
@@ -141,6 +146,8 @@ pub struct TextureSlots {
     pub emission: Option<TextureRef>,
     /// Opacity.
     pub opacity: Option<TextureRef>,
+    /// A blend's weight.
+    pub weight: Option<TextureRef>,
     /// How the opacity slot's value is read: `None` as a coverage fraction
     /// (a point of opacity a is kept with probability a, glTF `BLEND`),
     /// `Some(c)` as a mask (opaque where the value is at least c, cut out
@@ -183,6 +190,7 @@ impl TextureSlots {
             TextureSlot::Bump => &self.bump,
             TextureSlot::Emission => &self.emission,
             TextureSlot::Opacity => &self.opacity,
+            TextureSlot::Weight => &self.weight,
         }
     }
 
@@ -195,6 +203,7 @@ impl TextureSlots {
             TextureSlot::Bump => &mut self.bump,
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
+            TextureSlot::Weight => &mut self.weight,
         }
     }
 }
@@ -333,6 +342,24 @@ pub enum BsdfDesc {
     /// The principled BSDF (Burley 2012/2015) as Mitsuba 3's `principled`
     /// defines it.
     Principled(PrincipledParameters),
+    /// A mixture of two BSDFs (Mitsuba's `blendbsdf`):
+    /// f = (1 − w)·f₀ + w·f₁, with w the [`TextureSlot::Weight`] texture
+    /// where the material has one, else `weight`.
+    Blend(Box<BlendDesc>),
+}
+
+/// The two parts of a [`BsdfDesc::Blend`] and their weight. Each part is a
+/// whole material description so that it keeps its own textures (a
+/// textured diffuse blended with a conductor) and its own sides (a
+/// one-sided part is black from behind, whatever the other does); their
+/// emission, normal, bump and opacity maps are not used (the loader
+/// reports them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlendDesc {
+    /// The weight of the second part, in [0, 1].
+    pub weight: f32,
+    /// The first part (weight 1 − w) and the second (weight w).
+    pub parts: [MaterialDesc; 2],
 }
 
 /// The principled BSDF's parameters, Mitsuba's names and defaults; every

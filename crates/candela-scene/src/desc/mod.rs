@@ -28,7 +28,7 @@ mod texture;
 pub use camera::{CameraDesc, ClipRange, Projection};
 pub use extent::MAX_COORDINATE;
 pub use material::{
-    Alpha, BsdfDesc, InternalReflectance, Masking, MaterialDesc, MicrofacetModel,
+    Alpha, BlendDesc, BsdfDesc, InternalReflectance, Masking, MaterialDesc, MicrofacetModel,
     PrincipledParameters, Sides, TextureSlot, TextureSlots,
 };
 pub use perturbation::{AwayFromViewer, PerturbationRules, TangentFrame};

@@ -12,12 +12,13 @@
 //! | `bumpmap`, `normalmap` | the inner BSDF, its texture in the bump (height, times `scale`) or normal-map slot, with Mitsuba's [`PerturbationRules`] (`use_shadowing_function`; `flip_invalid_normals` false is reported) |
 //! | `mask` | the inner BSDF, its opacity texture in the opacity slot, or a constant opacity (a colour's luminance) |
 //! | `principled` | `Principled` (`principled.rs`: every parameter; textures on base_color, roughness, metallic) |
+//! | `blendbsdf` | `Blend` of its two BSDFs (`blend.rs`), a weight texture in the blend weight slot |
 //!
 //! `null` is [`BsdfDesc::Null`]: rays pass through; an emitter on the shape
 //! is still seen on its front side, as Mitsuba's `volpath` and `direct`
 //! show it.
 //!
-//! Mitsuba BSDFs Candela lacks (`principledthin`, `blendbsdf`, ...) are
+//! Mitsuba BSDFs Candela lacks (`principledthin`, ...) are
 //! replaced by the closest one and reported once.
 //!
 //! Sides: Mitsuba 3 evaluates every BSDF but the ones that transmit as
@@ -27,6 +28,7 @@
 //! names no BSDF). `twosided` turns the frame over behind the surface and
 //! evaluates its first BSDF there, or its second when it has two.
 
+use super::blend::{blend_parts_two_sided, transmits};
 use super::doc::{elements, Doc, XNode};
 use super::textures::{for_slot, Texture};
 use super::values::{boolean, constant_color, float, float_of, string};
@@ -53,9 +55,10 @@ impl Builder {
                 set(&mut textures, TextureSlot::Color, tex);
                 BsdfDesc::Diffuse { albedo }
             }
-            "twosided" | "bumpmap" | "normalmap" | "mask" | "blendbsdf" => {
+            "twosided" | "bumpmap" | "normalmap" | "mask" => {
                 return self.wrapper(doc, node, &kind, name)
             }
+            "blendbsdf" => return self.blend(doc, node, name),
             "dielectric" => BsdfDesc::Glass {
                 reflectance: self.constant(doc, node, "specular_reflectance", Vec3::ONE)?,
                 transmittance: self.constant(doc, node, "specular_transmittance", Vec3::ONE)?,
@@ -268,7 +271,6 @@ impl Builder {
                 }
                 set(&mut m.textures, TextureSlot::Opacity, tex);
             }
-            "blendbsdf" => self.warn(doc, node, "blendbsdf rendered as its first BSDF")?,
             _ => {}
         }
         m.name = name;
@@ -287,15 +289,6 @@ impl Builder {
         front: &mut MaterialDesc,
         back: Option<MaterialDesc>,
     ) -> Result<(), LoadError> {
-        let transmits = |m: &MaterialDesc| {
-            matches!(
-                m.bsdf,
-                BsdfDesc::Glass { .. }
-                    | BsdfDesc::ThinDielectric { .. }
-                    | BsdfDesc::RoughDielectric { .. }
-                    | BsdfDesc::Refraction { .. }
-            )
-        };
         if transmits(front) || back.as_ref().is_some_and(transmits) {
             return self.warn(
                 doc,
@@ -303,9 +296,11 @@ impl Builder {
                 "twosided around a BSDF that transmits (Mitsuba refuses it): the inner BSDF is used as it is",
             );
         }
+        blend_parts_two_sided(front);
         front.sides = match back {
             Some(mut b) => {
                 b.sides = Sides::Both;
+                blend_parts_two_sided(&mut b);
                 Sides::Back(Box::new(b))
             }
             None => Sides::Both,

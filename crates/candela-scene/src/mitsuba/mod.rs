@@ -6,7 +6,9 @@
 //!   file's defaults); `<include filename>` relative to the including file
 //!   (cycles are an error); `<ref id>` to named BSDFs, textures and shape
 //!   groups.
-//! - Shapes, BSDFs, textures: see `shapes.rs`, `bsdfs.rs` and `textures.rs`; emitters
+//! - Shapes, BSDFs, textures: see `shapes.rs`, `bsdfs.rs` (its table lists
+//!   every BSDF: the smooth and rough models, `principled` in
+//!   `principled.rs`, `blendbsdf` in `blend.rs`) and `textures.rs`; emitters
 //!   `emitters.rs`; the sensor, film, sampler and integrator `sensor.rs`
 //!   (they become [`crate::RenderHints`]).
 //! - Coordinates are kept as they are: Mitsuba's world has no up axis of its
@@ -16,6 +18,7 @@
 //! supported one (or skipped) and reported once by name; a type Mitsuba does
 //! not have is an error.
 
+mod blend;
 mod bsdfs;
 mod cie_tables;
 mod doc;

@@ -16,7 +16,7 @@
 //!
 //! Mitsuba's checkerboard is `color0` where u − ⌊u⌋ > ½ and v − ⌊v⌋ > ½
 //! agree, when read as a colour; read as one value (`eval_1`: roughness,
-//! metalness, opacity, height) it swaps the two. In Candela's v, whose
+//! metalness, opacity, height, blend weight) it swaps the two. In Candela's v, whose
 //! cells are the mirror image of Mitsuba's, the colour reading is
 //! therefore the description's checkerboard with the colours swapped, and
 //! the one-value reading is it with them in order ([`for_slot`]).
@@ -110,15 +110,27 @@ impl Builder {
 }
 
 /// `texture` as Mitsuba reads it into `slot`: a checkerboard read as one
-/// value has its colours swapped back (see the module docs).
+/// value has its colours swapped back (see the module docs), and for a
+/// blend weight made grey.
 pub(super) fn for_slot(slot: TextureSlot, mut texture: TextureRef) -> TextureRef {
     let one_value = matches!(
         slot,
-        TextureSlot::Roughness | TextureSlot::Metalness | TextureSlot::Opacity | TextureSlot::Bump
+        TextureSlot::Roughness
+            | TextureSlot::Metalness
+            | TextureSlot::Opacity
+            | TextureSlot::Bump
+            | TextureSlot::Weight
     );
     if let (true, TextureSource::Checkerboard { color0, color1 }) = (one_value, &mut texture.source)
     {
         std::mem::swap(color0, color1);
+        if slot == TextureSlot::Weight {
+            // Mitsuba reads a checkerboard's colour as one value by its
+            // channels' mean (an image's by its luminance, which the
+            // renderer takes): grey cells make the two agree.
+            *color0 = Vec3::splat(color0.element_sum() / 3.0);
+            *color1 = Vec3::splat(color1.element_sum() / 3.0);
+        }
     }
     texture
 }

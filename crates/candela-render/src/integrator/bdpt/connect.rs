@@ -133,7 +133,7 @@ pub(crate) fn connect_to_camera(
     // plane: the shadow ray ends there, not at the lens.
     let near_end = Vertex {
         p: scene.camera.clipped(Ray::new(cs.p_lens, -cs.wi)).origin,
-        ..camera
+        ..camera.clone()
     };
     if l == Vec3::ZERO || !visible(scene, qs, &near_end, ctx) {
         return None;

@@ -113,8 +113,8 @@ pub fn bdpt_radiance<R: PathRecorder>(
         ctx,
         &mut light,
     );
-    if let Some(VertexKind::Surface { hit, .. }) = camera.get(1).map(|v| v.kind) {
-        aov.record(&hit, scene.material(hit.material));
+    if let Some(VertexKind::Surface { hit, .. }) = camera.get(1).map(|v| &v.kind) {
+        aov.record(hit, scene.material(hit.material));
     }
     let mut l = Vec3::ZERO;
     for t in 1..=camera.len() {
@@ -164,6 +164,6 @@ fn strategy(
     } else {
         connect::connect(scene, light, camera, s, t, sampler, ctx)?
     };
-    let w = mis::mis_weight(scene, light, camera, c.sampled, s, t);
+    let w = mis::mis_weight(scene, light, camera, c.sampled.clone(), s, t);
     Some((c, w))
 }

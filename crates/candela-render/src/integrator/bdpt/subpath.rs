@@ -174,7 +174,11 @@ impl Walk {
             let material = scene.material(hit.material);
             let frame = shading_frame(scene, &hit, material);
             let bsdf = material.bsdf_at(&hit);
-            let kind = VertexKind::Surface { hit, frame, bsdf };
+            let kind = VertexKind::Surface {
+                hit,
+                frame,
+                bsdf: bsdf.clone(),
+            };
             let mut v = Vertex::new(kind, hit.p, hit.ng, frame.z, beta);
             let prev = path.last().expect("a walk starts from a vertex");
             v.pdf_fwd = prev.area_density(pdf_dir, &v);
@@ -208,8 +212,7 @@ impl Walk {
             }
             let n = path.len();
             path[n - 1].delta = specular;
-            let here = path[n - 1];
-            path[n - 2].pdf_rev = here.area_density(pdf_rev, &path[n - 2]);
+            path[n - 2].pdf_rev = path[n - 1].area_density(pdf_rev, &path[n - 2]);
             ray = Ray::new(hit.spawn_origin(wi), wi);
             ctx.rays.bounce += 1;
             bounces += 1;

@@ -11,11 +11,12 @@ use crate::shading::ShadingFrame;
 use crate::shape::SurfaceHit;
 use glam::Vec3;
 
-/// What a vertex is.
+/// What a vertex is. Not `Copy` (a blend's BSDF boxes its parts), but
+/// cloning one is a copy of bytes for every other BSDF.
 // Vertices live in two small per-sample vectors; boxing the surface
 // variant would allocate per vertex.
 #[allow(clippy::large_enum_variant)]
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) enum VertexKind {
     /// The lens point a camera subpath starts from.
     Camera,
@@ -45,7 +46,7 @@ pub(crate) enum VertexKind {
 }
 
 /// One vertex of a light or camera subpath.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) struct Vertex {
     /// What it is.
     pub kind: VertexKind,
@@ -77,6 +78,7 @@ impl Vertex {
     /// A vertex of the given kind with no densities yet.
     pub fn new(kind: VertexKind, p: Vec3, ng: Vec3, ns: Vec3, beta: Vec3) -> Self {
         Self {
+            infinite: matches!(kind, VertexKind::Sky),
             kind,
             p,
             ng,
@@ -85,7 +87,6 @@ impl Vertex {
             pdf_fwd: 0.0,
             pdf_rev: 0.0,
             delta: false,
-            infinite: matches!(kind, VertexKind::Sky),
         }
     }
 
@@ -103,7 +104,7 @@ impl Vertex {
                 !matches!(scene.lights.get(light), Light::Directional(_))
             }
             VertexKind::Sky => false,
-            VertexKind::Surface { bsdf, .. } => bsdf.is_some_and(|b| !b.is_specular()),
+            VertexKind::Surface { ref bsdf, .. } => bsdf.as_ref().is_some_and(|b| !b.is_specular()),
         }
     }
 
@@ -128,7 +129,7 @@ impl Vertex {
             VertexKind::Surface {
                 hit,
                 frame,
-                bsdf: Some(bsdf),
+                bsdf: Some(ref bsdf),
             } => {
                 let (wo_l, wi_l) = (frame.to_local(wo_world), frame.to_local(wi));
                 if !crate::shading::scatter_allowed(hit.ng, wi, wo_l, wi_l) {
@@ -174,7 +175,9 @@ impl Vertex {
         let pdf_dir = match self.kind {
             VertexKind::Light { .. } | VertexKind::Sky => return self.pdf_light(scene, next),
             VertexKind::Camera => scene.camera.pdf_we(&Ray::new(self.p, wn)).1,
-            VertexKind::Surface { frame, bsdf, .. } => {
+            VertexKind::Surface {
+                frame, ref bsdf, ..
+            } => {
                 let (Some(bsdf), Some(prev)) = (bsdf, prev) else {
                     return 0.0;
                 };
