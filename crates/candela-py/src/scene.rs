@@ -181,7 +181,7 @@ impl PyScene {
     /// `integrator` ("path", "normals", "direct", "indirect"), `lighting`
     /// ("mis", "light", "hemisphere"), `light_selection` ("auto", "uniform",
     /// "power", "bvh"), `accumulate`, `bounce` (only the light
-    /// after exactly that many bounces), `roulette`, `seed`,
+    /// after exactly that many bounces), `roulette`, `hide_emitters`, `seed`,
     /// `sampler`, `width`, `height`, `cell=(x, y, w, h)`, `camera`,
     /// `aperture`, `focal_distance`, `env_map` (a file or "sky"), `adaptive`
     /// (True, a tolerance or (batch, tolerance)), `time`, `threads`, `bvh`,
