@@ -1,7 +1,8 @@
 //! Reading the image formats scenes use for textures besides PNG and EXR:
 //! JPEG, TGA and BMP (8-bit stored values, sRGB-encoded colour unless the
 //! scene says the data is linear) and Radiance HDR (`.hdr`, linear), through
-//! the `image` crate with a cap on the decoded size.
+//! the `image` crate with a cap on the decoded size; and the Portable Float
+//! Map (`.pfm`, linear, pbrt's and Mitsuba's plain float format), read here.
 
 use crate::png_io::MAX_DECODED_BYTES;
 use crate::{ImageError, RgbImage, StoredPng};
@@ -54,6 +55,92 @@ pub fn read_radiance_hdr(path: impl AsRef<Path>) -> Result<RgbImage, ImageError>
     let image = decode(path)?.to_rgb32f();
     let (width, height) = (image.width() as usize, image.height() as usize);
     let pixels = image.pixels().map(|p| p.0).collect();
+    RgbImage::from_pixels(width, height, pixels)
+}
+
+/// Reads a Portable Float Map (`.pfm`): a text header `PF` (RGB) or `Pf`
+/// (grey), the width and height, and a scale whose sign gives the byte
+/// order (negative: little endian), then 32-bit floats row by row from the
+/// **bottom** row. Grey is replicated to RGB; every value is multiplied by
+/// the scale's magnitude, as Mitsuba 3 and pbrt-v4 read it.
+///
+/// # Errors
+/// [`ImageError::Io`] if the file cannot be read, [`ImageError::Read`] for
+/// a malformed header, a size over the 1 GiB cap, or too few pixel bytes.
+pub fn read_pfm(path: impl AsRef<Path>) -> Result<RgbImage, ImageError> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(|source| ImageError::Io {
+        action: "cannot read",
+        path: path.into(),
+        source,
+    })?;
+    let bad = |why: &str| ImageError::Read {
+        path: path.into(),
+        source: format!("not a PFM file: {why}").into(),
+    };
+    // Three whitespace-separated header fields after the magic, then one
+    // whitespace byte, then the data.
+    let mut fields = Vec::new();
+    let mut at = 0;
+    while fields.len() < 4 {
+        while at < bytes.len() && bytes[at].is_ascii_whitespace() {
+            at += 1;
+        }
+        let start = at;
+        while at < bytes.len() && !bytes[at].is_ascii_whitespace() {
+            at += 1;
+        }
+        if start == at || at >= bytes.len() {
+            return Err(bad("the header ends early"));
+        }
+        fields.push(String::from_utf8_lossy(&bytes[start..at]).into_owned());
+    }
+    at += 1;
+    let channels = match fields[0].as_str() {
+        "PF" => 3,
+        "Pf" => 1,
+        _ => return Err(bad("it does not start with PF or Pf")),
+    };
+    let size = |s: &str| s.parse::<usize>().ok().filter(|&n| n > 0);
+    let (Some(width), Some(height)) = (size(&fields[1]), size(&fields[2])) else {
+        return Err(bad("its width or height is not a positive number"));
+    };
+    let scale: f32 = fields[3]
+        .parse()
+        .map_err(|_| bad("its scale is not a number"))?;
+    let count = width
+        .checked_mul(height)
+        .and_then(|n| n.checked_mul(channels * 4))
+        .filter(|&n| n <= MAX_DECODED_BYTES)
+        .ok_or_else(|| bad("its size is over the 1 GiB decoding cap"))?;
+    let data = bytes
+        .get(at..at + count)
+        .ok_or_else(|| bad("it has fewer pixels than its header says"))?;
+    let value = |k: usize| {
+        let b = [
+            data[4 * k],
+            data[4 * k + 1],
+            data[4 * k + 2],
+            data[4 * k + 3],
+        ];
+        let v = if scale < 0.0 {
+            f32::from_le_bytes(b)
+        } else {
+            f32::from_be_bytes(b)
+        };
+        v * scale.abs()
+    };
+    let mut pixels = Vec::with_capacity(width * height);
+    for row in (0..height).rev() {
+        for x in 0..width {
+            let k = (row * width + x) * channels;
+            pixels.push(if channels == 3 {
+                [value(k), value(k + 1), value(k + 2)]
+            } else {
+                [value(k); 3]
+            });
+        }
+    }
     RgbImage::from_pixels(width, height, pixels)
 }
 
@@ -171,6 +258,44 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_pfm_reads_from_the_bottom_row_in_either_byte_order() {
+        // 2×2 RGB, rows stored bottom first: the top row read first must be
+        // the file's second.
+        let dir = candela_testkit::TempDir::new("raster-io-pfm");
+        let rows = [
+            [[1.5f32, 2.0, 3.0], [0.25, 0.5, 0.75]],
+            [[10.0, 20.0, 30.0], [-1.0, 0.0, 1e-3]],
+        ];
+        for (name, scale, le) in [("le.pfm", "-1.0", true), ("be.pfm", "1.0", false)] {
+            let mut bytes = format!("PF\n2 2\n{scale}\n").into_bytes();
+            for row in &rows {
+                for v in row.iter().flatten() {
+                    bytes.extend(if le { v.to_le_bytes() } else { v.to_be_bytes() });
+                }
+            }
+            let path = dir.join(name);
+            std::fs::write(&path, &bytes).unwrap();
+            let image = read_pfm(&path).unwrap();
+            assert_eq!(image.size(), (2, 2));
+            let top_first: Vec<[f32; 3]> = rows.iter().rev().flatten().copied().collect();
+            assert_eq!(image.pixels(), &top_first[..], "{name}");
+        }
+        // Grey, replicated, times the scale's magnitude (Mitsuba 3.9 reads
+        // this file as 1.0); and a file cut short is an error naming it.
+        let grey = dir.join("grey.pfm");
+        let mut bytes = b"Pf 1 1 -2\n".to_vec();
+        bytes.extend(0.5f32.to_le_bytes());
+        std::fs::write(&grey, &bytes).unwrap();
+        assert_eq!(read_pfm(&grey).unwrap().pixels(), &[[1.0; 3]]);
+        std::fs::write(&grey, &bytes[..bytes.len() - 1]).unwrap();
+        let err = read_pfm(&grey).unwrap_err().to_string();
+        assert!(
+            err.contains("grey.pfm") && err.contains("fewer pixels"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -53,9 +53,10 @@ pub struct ImageSettings {
     #[cfg_attr(feature = "cli", arg(short = 'd', long, value_name = "DIST"))]
     pub focal_distance: Option<f32>,
 
-    /// Environment map: an equirectangular image (.exr, .hdr, or an 8-bit
-    /// .png, .jpg, .tga, .bmp read as sRGB), +Y up, lighting the scene from
-    /// infinitely far away; `sky` is a built-in procedural sky with a sun.
+    /// Environment map: an equirectangular image (.exr, .hdr, .pfm, or an
+    /// 8-bit .png, .jpg, .tga, .bmp read as sRGB), +Y up, lighting the scene
+    /// from infinitely far away; `sky` is a built-in procedural sky with a
+    /// sun.
     #[cfg_attr(feature = "cli", arg(short = 'e', long = "env", value_name = "MAP"))]
     pub env_map: Option<PathBuf>,
 

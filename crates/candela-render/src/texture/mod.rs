@@ -28,8 +28,8 @@ pub use point::TexturePoint;
 pub use slot::{SlotSource, SlotTexture};
 
 use candela_image::{
-    read_exr, read_png_stored, read_radiance_hdr, read_stored, srgb_decode, ImageError, RgbImage,
-    StoredPng, STORED_EXTENSIONS,
+    read_exr, read_pfm, read_png_stored, read_radiance_hdr, read_stored, srgb_decode, ImageError,
+    RgbImage, StoredPng, STORED_EXTENSIONS,
 };
 use candela_scene::{ColorSpace, TextureWrap};
 use glam::{Vec2, Vec3};
@@ -42,7 +42,7 @@ pub enum TextureError {
     #[error(transparent)]
     Image(#[from] ImageError),
     /// The file's extension is not one of the formats read.
-    #[error("{0}: unknown image format (expected .png, .jpg, .tga, .bmp, .exr or .hdr)")]
+    #[error("{0}: unknown image format (expected .png, .jpg, .tga, .bmp, .exr, .hdr or .pfm)")]
     UnknownFormat(PathBuf),
     /// The image has no pixels.
     #[error("the image is empty (0 pixels)")]
@@ -76,6 +76,7 @@ pub fn read_linear_image(path: &Path) -> Result<RgbImage, TextureError> {
     match extension(path).as_deref() {
         Some("exr") => Ok(read_exr(path)?),
         Some("hdr") => Ok(read_radiance_hdr(path)?),
+        Some("pfm") => Ok(read_pfm(path)?),
         _ if is_stored_format(path) => Ok(read_stored_values(path)?.srgb_decoded()?),
         _ => Err(TextureError::UnknownFormat(path.to_path_buf())),
     }
