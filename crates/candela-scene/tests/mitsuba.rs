@@ -164,6 +164,27 @@ fn the_base_file_loads_every_element() {
 }
 
 #[test]
+fn a_spot_lights_texture_is_reported_not_dropped() {
+    let dir = candela_testkit::TempDir::new("mitsuba-spot-texture");
+    let path = dir.join("spot.xml");
+    std::fs::write(
+        &path,
+        r#"<scene version="3.0.0"><emitter type="spot">
+        <texture name="texture" type="checkerboard"/></emitter><shape type="sphere"/></scene>"#,
+    )
+    .unwrap();
+    let l = load(&path, &LoadOptions::default()).unwrap();
+    assert!(
+        l.report
+            .to_string()
+            .contains("projected texture is not supported"),
+        "{}",
+        l.report
+    );
+    assert!(load(&path, &strict()).is_err(), "strict mode refuses it");
+}
+
+#[test]
 fn hide_emitters_is_a_hint_of_the_integrator() {
     let dir = candela_testkit::TempDir::new("mitsuba-hide-emitters");
     let load = |integrator: &str| {

@@ -61,6 +61,13 @@ pub(super) fn emitter(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Loa
                     format!("beam_width {beam} is not a positive angle"),
                 ));
             }
+            if let Some(t) = doc.prop(node, "texture")? {
+                b.warn(
+                    doc,
+                    t,
+                    "a spot light's projected texture is not supported (its intensity is used)",
+                )?;
+            }
             // Mitsuba fades linearly in the angle from beam_width (full)
             // to cutoff_angle (none); a beam at least as wide is a hard cone.
             let edge = if beam < cutoff {
