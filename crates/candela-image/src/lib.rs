@@ -34,7 +34,7 @@ pub use exr_io::{
 };
 pub use heat::{finite_percentile, heat_colormap, heat_image};
 pub use merge::merge_renders;
-pub use png_io::{read_png, read_png_stored, write_png, write_png_display, StoredPng};
+pub use png_io::{read_png, read_png_stored, write_png, write_png_display, StoredImage};
 pub use raster_io::{read_pfm, read_radiance_hdr, read_stored, STORED_EXTENSIONS};
 pub use render_info::{RenderInfo, SppSpread};
 pub use tonemap::{quantize_u8, srgb_decode, srgb_encode, ToneCurve, ToneMap};

@@ -78,12 +78,12 @@ pub fn read_png(path: impl AsRef<Path>) -> Result<RgbImage, ImageError> {
     read_png_stored(path)?.srgb_decoded()
 }
 
-/// A PNG's stored values, each scaled to [0, 1] (`v / 255` or `v / 65535`)
-/// with no transfer curve applied, as RGBA: grey is replicated to RGB and
-/// a missing alpha is 1. Data maps (roughness, normals, alpha) are read
+/// An integer image's stored values (PNG, JPEG, TGA, BMP), each scaled to
+/// [0, 1] (`v / 255` or `v / 65535`) with no transfer curve applied, as
+/// RGBA: grey is replicated to RGB and a missing alpha is 1. Data maps (roughness, normals, alpha) are read
 /// from these exactly; colour is decoded by the caller.
 #[derive(Clone, Debug, PartialEq)]
-pub struct StoredPng {
+pub struct StoredImage {
     /// Width in pixels.
     pub width: usize,
     /// Height in pixels.
@@ -94,7 +94,7 @@ pub struct StoredPng {
     pub has_alpha: bool,
 }
 
-impl StoredPng {
+impl StoredImage {
     /// The colour decoded from sRGB to linear RGB, alpha dropped.
     ///
     /// # Errors
@@ -110,11 +110,11 @@ impl StoredPng {
     }
 }
 
-/// Reads a PNG's stored values (see [`StoredPng`]).
+/// Reads a PNG's stored values (see [`StoredImage`]).
 ///
 /// # Errors
 /// As [`read_png`].
-pub fn read_png_stored(path: impl AsRef<Path>) -> Result<StoredPng, ImageError> {
+pub fn read_png_stored(path: impl AsRef<Path>) -> Result<StoredImage, ImageError> {
     let path = path.as_ref();
     let read_err = |e: png::DecodingError| ImageError::Read {
         path: path.into(),
@@ -162,7 +162,7 @@ pub fn read_png_stored(path: impl AsRef<Path>) -> Result<StoredPng, ImageError> 
             _ => [s[0], s[1], s[2], s[3]],
         })
         .collect();
-    Ok(StoredPng {
+    Ok(StoredImage {
         width,
         height,
         pixels,

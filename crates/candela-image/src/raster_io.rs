@@ -5,7 +5,7 @@
 //! Map (`.pfm`, linear, pbrt's and Mitsuba's plain float format), read here.
 
 use crate::png_io::MAX_DECODED_BYTES;
-use crate::{ImageError, RgbImage, StoredPng};
+use crate::{ImageError, RgbImage, StoredImage};
 use image::{DynamicImage, ImageReader, Limits};
 use std::path::Path;
 
@@ -20,7 +20,7 @@ pub const STORED_EXTENSIONS: [&str; 4] = ["jpg", "jpeg", "tga", "bmp"];
 /// # Errors
 /// [`ImageError::Io`] if the file cannot be opened, [`ImageError::Read`] if
 /// it cannot be decoded or its decoded size exceeds 1 GiB; both name it.
-pub fn read_stored(path: impl AsRef<Path>) -> Result<StoredPng, ImageError> {
+pub fn read_stored(path: impl AsRef<Path>) -> Result<StoredImage, ImageError> {
     let path = path.as_ref();
     let image = decode(path)?;
     let has_alpha = image.color().has_alpha();
@@ -38,7 +38,7 @@ pub fn read_stored(path: impl AsRef<Path>) -> Result<StoredPng, ImageError> {
             .map(|p| p.0.map(|v| v as f32 / 255.0))
             .collect()
     };
-    Ok(StoredPng {
+    Ok(StoredImage {
         width,
         height,
         pixels,

@@ -2,7 +2,7 @@
 //! the side the hit sees (a one-sided part is black from behind), mixed by
 //! the weight texture's value at the hit's uv, or by the constant.
 
-use super::sides_tests::{hit, square};
+use super::sides_tests::{diffuse, hit, square};
 use crate::scene::{Scene, SceneOptions};
 use crate::shape::SurfaceHit;
 use candela_scene::{
@@ -11,16 +11,6 @@ use candela_scene::{
 };
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
-
-fn diffuse(albedo: f32, sides: Sides) -> MaterialDesc {
-    MaterialDesc {
-        bsdf: BsdfDesc::Diffuse {
-            albedo: Vec3::splat(albedo),
-        },
-        sides,
-        ..MaterialDesc::default_grey()
-    }
-}
 
 const CHECKER: (f32, f32) = (0.25, 0.75);
 

@@ -16,7 +16,9 @@ use candela_scene::{
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
-fn diffuse(albedo: f32, sides: Sides) -> MaterialDesc {
+/// A diffuse material of `albedo` with `sides` (shared with the blend's
+/// material tests).
+pub(super) fn diffuse(albedo: f32, sides: Sides) -> MaterialDesc {
     MaterialDesc {
         bsdf: BsdfDesc::Diffuse {
             albedo: Vec3::splat(albedo),

@@ -29,7 +29,7 @@ pub use slot::{SlotSource, SlotTexture};
 
 use candela_image::{
     read_exr, read_pfm, read_png_stored, read_radiance_hdr, read_stored, srgb_decode, ImageError,
-    RgbImage, StoredPng, STORED_EXTENSIONS,
+    RgbImage, StoredImage, STORED_EXTENSIONS,
 };
 use candela_scene::{ColorSpace, TextureWrap};
 use glam::{Vec2, Vec3};
@@ -63,7 +63,7 @@ fn is_stored_format(path: &Path) -> bool {
 }
 
 /// An 8-bit file's stored values (see [`is_stored_format`]).
-fn read_stored_values(path: &Path) -> Result<StoredPng, TextureError> {
+fn read_stored_values(path: &Path) -> Result<StoredImage, TextureError> {
     Ok(match extension(path).as_deref() {
         Some("png") => read_png_stored(path)?,
         _ => read_stored(path)?,
