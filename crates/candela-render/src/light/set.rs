@@ -48,6 +48,39 @@ pub struct LightSet {
     tree: OnceLock<LightTree>,
 }
 
+/// Rescales the power weights of the sampled lights so that the lights at
+/// infinity together get the share `n / (n + 1)` of the choices (`n` of
+/// them) and the lights in the scene together the rest, each group keeping
+/// its own ratios of power (pbrt-v4's light BVH gives lights at infinity
+/// the same share). An environment's power is its radiance over a disk the
+/// size of the whole scene, so beside a long ground plane it outweighs a
+/// small lamp by orders of magnitude although both light the points near
+/// the lamp alike: by power alone, a lamp of 5 cm radius under a sky with
+/// a 400 m ground got 10^-4 of the light samples and the image 1000× the
+/// relative error of a uniform choice (BENCHMARKS.md). At worst this costs
+/// a sky-lit point half its sky samples (the BSDF samples still find the
+/// sky under MIS). A group without power keeps no share.
+fn share_with_lights_at_infinity(weights: &mut [f32], at_infinity: &[bool]) {
+    let sum = |infinite: bool| -> f32 {
+        weights
+            .iter()
+            .zip(at_infinity)
+            .filter(|&(_, &inf)| inf == infinite)
+            .map(|(w, _)| w)
+            .sum()
+    };
+    let (sky, lamps) = (sum(true), sum(false));
+    if sky <= 0.0 || lamps <= 0.0 || !(sky + lamps).is_finite() {
+        return;
+    }
+    let n = at_infinity.iter().filter(|&&inf| inf).count() as f32;
+    let sky_scale = n / (n + 1.0) / sky;
+    let lamp_scale = 1.0 / (n + 1.0) / lamps;
+    for (w, &inf) in weights.iter_mut().zip(at_infinity) {
+        *w *= if inf { sky_scale } else { lamp_scale };
+    }
+}
+
 impl LightSet {
     /// Collects `lights`; `prim_light` pairs each emissive primitive with
     /// the index of its light. `scene_radius` sizes lights at infinity.
@@ -81,6 +114,11 @@ impl LightSet {
             // No usable power figure: choose uniformly.
             weights.iter_mut().for_each(|w| *w = 1.0);
         }
+        let at_infinity: Vec<bool> = sampled
+            .iter()
+            .map(|&i| lights[i as usize].is_infinite())
+            .collect();
+        share_with_lights_at_infinity(&mut weights, &at_infinity);
         let total: f32 = weights.iter().sum();
         let mut pmf = vec![0.0; lights.len()];
         let mut cdf = Vec::with_capacity(weights.len());
@@ -350,7 +388,9 @@ fn entries_at_most(cdf: &[f32], u: f32) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::light::{AmbientLight, AreaLight, AreaShape, PointLight};
+    use crate::light::{
+        AmbientLight, AreaLight, AreaShape, LightContext, LightSelection, PointLight,
+    };
 
     /// The count is the binary search's index for running sums of every
     /// length up to past the short ones, with repeated entries (lights of no
@@ -409,6 +449,51 @@ mod tests {
             .filter(|k| set.choose_by_power((*k as f32 + 0.5) / n as f32).unwrap().0 == 2)
             .count();
         assert_eq!(picks_of_2, 750);
+    }
+
+    /// Lights at infinity share `n / (n + 1)` of the choices by power and
+    /// the light tree alike, each group split by its own powers, however
+    /// the scene's size inflates a sky's power figure.
+    #[test]
+    fn lights_at_infinity_share_the_choices_with_the_lamps() {
+        let sky = |r: f32| {
+            Light::Ambient(AmbientLight {
+                radiance: Vec3::splat(r),
+            })
+        };
+        let lamp = |radiance: f32| {
+            Light::Area(AreaLight {
+                shape: AreaShape::Triangle {
+                    v: [Vec3::ZERO, Vec3::X, Vec3::Z],
+                    normal: Vec3::NEG_Y,
+                },
+                radiance: Vec3::splat(radiance),
+                textured: None,
+            })
+        };
+        // A sky's power figure grows with the scene radius squared: at
+        // radius 1000 these skies outweigh the lamps by about 10^7.
+        let set = LightSet::new(vec![sky(1.0), lamp(1.0), sky(3.0), lamp(3.0)], &[], 1000.0);
+        let expected = [
+            2.0 / 3.0 * 0.25,
+            1.0 / 3.0 * 0.25,
+            2.0 / 3.0 * 0.75,
+            1.0 / 3.0 * 0.75,
+        ];
+        for (i, want) in expected.into_iter().enumerate() {
+            let got = set.power_pmf(i as u32);
+            assert!((got - want).abs() < 1e-6, "light {i}: {got}, want {want}");
+        }
+        let tree = set.selector(LightSelection::Bvh);
+        let ctx = LightContext::surface(Vec3::new(0.2, -1.0, 0.2), Vec3::Y, false);
+        let skies = tree.pmf(&ctx, 0) + tree.pmf(&ctx, 2);
+        assert!(
+            (skies - 2.0 / 3.0).abs() < 1e-6,
+            "the tree's skies: {skies}"
+        );
+        // Only skies (or only lamps): powers alone.
+        let skies_only = LightSet::new(vec![sky(1.0), sky(3.0)], &[], 1000.0);
+        assert!((skies_only.power_pmf(1) - 0.75).abs() < 1e-6);
     }
 
     /// The set's samples and densities, with the area cached, are the
