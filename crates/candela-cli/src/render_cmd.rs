@@ -171,7 +171,7 @@ pub fn render_job(
         variance: true,
         info: output.info(&render, job.scene.as_deref()),
         rate_image: adaptive.then_some(max_samples),
-        exr_compression: settings.output.exr_compression(),
+        exr_compression: settings.output.exr_compression,
     };
     let mut written = write_film(&job.output, &output.film, &opts)?;
     if settings.output.denoise {

@@ -52,8 +52,10 @@ pub const VARIANCE_LAYER: &str = "variance";
 /// size against the time spent writing. The 15 channels of a 480×360
 /// CBbunny render with its layers: ZIP 2.8 MB, PIZ 3.9 MB, RLE 8.1 MB,
 /// none 11.1 MB; ZIP costs the most CPU time (BENCHMARKS.md, "EXR
-/// compression").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// compression"). The `--exr-compression` setting.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
 pub enum ExrCompression {
     /// No compression: the fastest to write, the largest file.
     None,

@@ -52,8 +52,11 @@ pub fn quantize_u8(display: f32) -> u8 {
     (clamp_unit(display) * 255.0 + 0.5) as u8
 }
 
-/// The curve that maps exposed linear radiance to a display value in `[0, 1]`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// The curve that maps exposed linear radiance to a display value in `[0, 1]`
+/// (the `--tone` setting).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
 pub enum ToneCurve {
     /// Clamp to `[0, 1]`, then the exact sRGB encoding. Faithful for values
     /// that fit the display range; highlights clip.

@@ -225,7 +225,7 @@ impl PyFilm {
                 ..RenderInfo::default()
             },
             rate_image: None,
-            exr_compression: output.exr_compression(),
+            exr_compression: output.exr_compression,
         };
         // Found before anything is written, so a missing library leaves no
         // half of the output.

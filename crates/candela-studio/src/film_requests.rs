@@ -101,7 +101,7 @@ fn save(conn: &Connection, format: SaveFormat) -> Result<Reply, String> {
         variance: true,
         info: Default::default(),
         rate_image: adaptive.then_some(last.header.target_spp),
-        exr_compression: last.settings.output.exr_compression(),
+        exr_compression: last.settings.output.exr_compression,
     };
     let mut written = write_film(&path, &last.film, &opts).map_err(|e| e.to_string())?;
     if let Some(oidn) = oidn {

@@ -1,5 +1,5 @@
 use super::*;
-use candela_render::settings::{Bvh, Tone};
+use candela_render::settings::{Bvh, ToneCurve};
 
 fn parse(args: &[&str]) -> (Cli, ArgMatches) {
     let matches = Cli::command().try_get_matches_from(args).unwrap();
@@ -66,7 +66,7 @@ fn part5_flags_parse() {
     assert_eq!(r.cs184.cell, Some(vec![10, 20, 30, 40]));
     assert_eq!(r.settings.sampling.time, Some(2.5));
     assert_eq!(r.settings.output.exposure, -1.5);
-    assert_eq!(r.settings.output.tone, Tone::Cs184);
+    assert_eq!(r.settings.output.tone, ToneCurve::Cs184);
     assert_eq!(r.settings.run.bvh, Bvh::Median);
     assert_eq!((r.settings.run.tile, r.settings.sampling.spp), (8, None));
     assert!(Cli::try_parse_from(["candela", "-p", "1", "2", "3"]).is_err());

@@ -27,11 +27,12 @@ mod sampling;
 #[cfg(test)]
 mod tests;
 
+pub use candela_image::{ExrCompression, ToneCurve};
 #[cfg(feature = "cli")]
 pub use help::{flags, help, SettingFlag};
 pub use image::{ImageSettings, BUILT_IN_SKY, CELL_HELP};
 pub use integrator::{Estimator, IntegratorSettings, ROULETTE_FROM, ROULETTE_THRESHOLD};
-pub use output::{ExrCompressionSetting, OutputSettings, Tone};
+pub use output::OutputSettings;
 pub use run::{Bvh, RunSettings, DEFAULT_CHECKPOINT_EVERY, DEFAULT_MEMORY_LIMIT_GIB, DEFAULT_TILE};
 pub use sampling::{SamplingSettings, ADAPTIVE_HELP, DEFAULT_SPP};
 

@@ -4,36 +4,6 @@ use super::{check, SettingsError};
 use candela_image::{ExrCompression, ToneCurve, ToneMap};
 use serde::{Deserialize, Serialize};
 
-/// PNG tone curves (`--tone`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-#[serde(rename_all = "lowercase")]
-pub enum Tone {
-    /// Clamp, then the sRGB curve.
-    #[default]
-    Srgb,
-    /// What the CS184 program writes: exposure √2, then gamma 2.2.
-    Cs184,
-    /// ACES filmic (Narkowicz's fit), then sRGB: rolls off highlights.
-    Filmic,
-}
-
-/// EXR compression (`--exr-compression`); all lossless.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-#[serde(rename_all = "lowercase")]
-pub enum ExrCompressionSetting {
-    /// None: the fastest to write, the largest file.
-    None,
-    /// Run-length encoding: fast, little smaller on noisy renders.
-    Rle,
-    /// Deflate, 16 scanlines per block: small, slowest to write.
-    #[default]
-    Zip,
-    /// PIZ (wavelets): small for noisy images, faster than ZIP.
-    Piz,
-}
-
 /// The output settings.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
@@ -46,7 +16,7 @@ pub struct OutputSettings {
 
     /// PNG tone curve.
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = OutputSettings::default().tone))]
-    pub tone: Tone,
+    pub tone: ToneCurve,
 
     /// Also write a denoised image beside the output (`out.denoised.png`),
     /// filtered by Intel Open Image Denoise with the albedo and normal
@@ -62,7 +32,7 @@ pub struct OutputSettings {
     /// How EXR files are compressed (lossless in every case); `none` writes
     /// fastest, `zip` smallest.
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = OutputSettings::default().exr_compression))]
-    pub exr_compression: ExrCompressionSetting,
+    pub exr_compression: ExrCompression,
 }
 
 impl OutputSettings {
@@ -70,21 +40,7 @@ impl OutputSettings {
     pub fn tone_map(&self) -> ToneMap {
         ToneMap {
             exposure: self.exposure,
-            curve: match self.tone {
-                Tone::Srgb => ToneCurve::Srgb,
-                Tone::Cs184 => ToneCurve::Cs184,
-                Tone::Filmic => ToneCurve::Filmic,
-            },
-        }
-    }
-
-    /// The EXR writer's compression.
-    pub fn exr_compression(&self) -> ExrCompression {
-        match self.exr_compression {
-            ExrCompressionSetting::None => ExrCompression::None,
-            ExrCompressionSetting::Rle => ExrCompression::Rle,
-            ExrCompressionSetting::Zip => ExrCompression::Zip,
-            ExrCompressionSetting::Piz => ExrCompression::Piz,
+            curve: self.tone,
         }
     }
 
