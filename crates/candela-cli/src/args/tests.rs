@@ -200,3 +200,18 @@ fn view_takes_the_render_settings() {
     keys.sort_unstable();
     assert_eq!(keys, ["height", "spp", "width"]);
 }
+
+/// An optional-value flag before the scene takes its value only after `=`:
+/// `--hide-emitters scene.xml` hides emitters and renders scene.xml (a
+/// space-separated value swallowed the path and failed as "not a boolean").
+#[test]
+fn optional_boolean_flags_leave_the_scene_path_alone() {
+    for flag in ["--hide-emitters", "--denoise"] {
+        let (cli, _) = parse(&["candela", flag, "scene.xml"]);
+        assert_eq!(cli.render.scene, Some(PathBuf::from("scene.xml")), "{flag}");
+    }
+    let (cli, _) = parse(&["candela", "--hide-emitters", "scene.xml"]);
+    assert!(cli.render.settings.integrator.hide_emitters);
+    let (cli, _) = parse(&["candela", "--hide-emitters=false", "scene.xml"]);
+    assert!(!cli.render.settings.integrator.hide_emitters);
+}

@@ -124,9 +124,10 @@ pub struct IntegratorSettings {
     /// camera rays pass through emitting surfaces to what is behind them,
     /// and the environment behind everything is black. Emitters still
     /// light the scene and show in mirrors and through glass. Path tracing
-    /// only. `--hide-emitters` alone is `--hide-emitters true`.
+    /// only. `--hide-emitters` alone is `--hide-emitters=true` (the value
+    /// needs the `=`, so that a scene path after the flag stays the scene).
     #[cfg_attr(feature = "cli", arg(long, value_name = "BOOL", action = clap::ArgAction::Set,
-        num_args = 0..=1, default_missing_value = "true",
+        num_args = 0..=1, require_equals = true, default_missing_value = "true",
         value_parser = clap::builder::BoolishValueParser::new(),
         default_value_t = IntegratorSettings::default().hide_emitters))]
     pub hide_emitters: bool,
@@ -249,7 +250,7 @@ impl IntegratorSettings {
                 "hide_emitters",
                 "--hide-emitters",
                 true,
-                "only with the path tracer (a scene may ask for it: --hide-emitters false)",
+                "only with the path tracer (a scene may ask for it: --hide-emitters=false)",
             )?;
             check(
                 self.accumulate,

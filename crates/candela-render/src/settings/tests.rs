@@ -276,7 +276,7 @@ fn hidden_emitters_start_the_image_at_bounce_one_in_the_path_tracer_only() {
     for estimator in ["bdpt", "light"] {
         assert_eq!(
             refused(json!({"hide_emitters": true, "integrator": estimator})),
-            "hide_emitters (--hide-emitters) true: only with the path tracer (a scene may ask for it: --hide-emitters false)"
+            "hide_emitters (--hide-emitters) true: only with the path tracer (a scene may ask for it: --hide-emitters=false)"
         );
     }
 }
