@@ -37,8 +37,8 @@ pub enum LightSelection {
     /// Every light equally likely.
     Uniform,
     /// In proportion to each light's power, wherever the point is; lights
-    /// at infinity as a group get n/(n + 1) of the choices (n of them),
-    /// as their power figure grows with the scene's size.
+    /// at infinity as a group get at most n/(n + 1) of the choices (n of
+    /// them), as their power figure grows with the scene's size.
     Power,
     /// By the light tree: in proportion to a bound of each light's
     /// contribution at the point (power, distance, orientation; Conty

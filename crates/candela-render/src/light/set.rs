@@ -48,18 +48,20 @@ pub struct LightSet {
     tree: OnceLock<LightTree>,
 }
 
-/// Rescales the power weights of the sampled lights so that the lights at
-/// infinity together get the share `n / (n + 1)` of the choices (`n` of
-/// them) and the lights in the scene together the rest, each group keeping
-/// its own ratios of power (pbrt-v4's light BVH gives lights at infinity
-/// the same share). An environment's power is its radiance over a disk the
-/// size of the whole scene, so beside a long ground plane it outweighs a
-/// small lamp by orders of magnitude although both light the points near
-/// the lamp alike: by power alone, a lamp of 5 cm radius under a sky with
-/// a 400 m ground got 10^-4 of the light samples and the image 1000× the
-/// relative error of a uniform choice (BENCHMARKS.md). At worst this costs
-/// a sky-lit point half its sky samples (the BSDF samples still find the
-/// sky under MIS). A group without power keeps no share.
+/// Caps the share of the choices that the lights at infinity get by power
+/// at `n / (n + 1)` (`n` of them), the share pbrt-v4's light BVH gives
+/// them, rescaling each group's power weights so that each keeps its own
+/// ratios. An environment's power figure is its radiance through a disk of
+/// the whole scene's size, the most any set of receivers could take from
+/// it. Beside a long ground plane that figure outweighs a small lamp by
+/// orders of magnitude, although both light the points near the lamp alike.
+/// By power alone, a lamp of 5 cm radius under a sky with a 400 m ground got
+/// 10^-4 of the light samples, and the image 1000× the relative error of a
+/// uniform choice (BENCHMARKS.md). At worst the cap costs a sky-lit point
+/// half its sky samples, and BSDF samples still find the sky under MIS.
+/// Where the overstated figure still gives the sky less than the cap (lamps
+/// brighter than the sky, as in a city at night), the choice stays by
+/// power. A group without power keeps no share.
 fn share_with_lights_at_infinity(weights: &mut [f32], at_infinity: &[bool]) {
     let sum = |infinite: bool| -> f32 {
         weights
@@ -74,8 +76,12 @@ fn share_with_lights_at_infinity(weights: &mut [f32], at_infinity: &[bool]) {
         return;
     }
     let n = at_infinity.iter().filter(|&&inf| inf).count() as f32;
-    let sky_scale = n / (n + 1.0) / sky;
-    let lamp_scale = 1.0 / (n + 1.0) / lamps;
+    let cap = n / (n + 1.0);
+    if sky / (sky + lamps) <= cap {
+        return;
+    }
+    let sky_scale = cap / sky;
+    let lamp_scale = (1.0 - cap) / lamps;
     for (w, &inf) in weights.iter_mut().zip(at_infinity) {
         *w *= if inf { sky_scale } else { lamp_scale };
     }
@@ -391,6 +397,7 @@ mod tests {
     use crate::light::{
         AmbientLight, AreaLight, AreaShape, LightContext, LightSelection, PointLight,
     };
+    use std::f32::consts::PI;
 
     /// The count is the binary search's index for running sums of every
     /// length up to past the short ones, with repeated entries (lights of no
@@ -451,9 +458,10 @@ mod tests {
         assert_eq!(picks_of_2, 750);
     }
 
-    /// Lights at infinity share `n / (n + 1)` of the choices by power and
-    /// the light tree alike, each group split by its own powers, however
-    /// the scene's size inflates a sky's power figure.
+    /// Lights at infinity get at most `n / (n + 1)` of the choices, by power
+    /// and by the light tree alike, each group split by its own powers,
+    /// however the scene's size inflates a sky's power figure; below the
+    /// cap the choice stays by power.
     #[test]
     fn lights_at_infinity_share_the_choices_with_the_lamps() {
         let sky = |r: f32| {
@@ -491,6 +499,11 @@ mod tests {
             (skies - 2.0 / 3.0).abs() < 1e-6,
             "the tree's skies: {skies}"
         );
+        // Lamps brighter than the skies' overstated figure: powers alone.
+        let dim = LightSet::new(vec![sky(1e-4), lamp(1.0), sky(3e-4)], &[], 1.0);
+        let by_power = |l: f32| l / (PI * PI * 4e-4 + PI * 0.5);
+        assert!((dim.power_pmf(0) - by_power(PI * PI * 1e-4)).abs() < 1e-6);
+        assert!((dim.power_pmf(1) - by_power(PI * 0.5)).abs() < 1e-6);
         // Only skies (or only lamps): powers alone.
         let skies_only = LightSet::new(vec![sky(1.0), sky(3.0)], &[], 1000.0);
         assert!((skies_only.power_pmf(1) - 0.75).abs() < 1e-6);

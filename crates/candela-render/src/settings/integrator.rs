@@ -76,8 +76,8 @@ pub struct IntegratorSettings {
     /// the shading point: power, distance, orientation); auto takes the
     /// tree when the scene has more than 64 such lights, power otherwise.
     /// By power and by the tree, lights at infinity (skies, environment
-    /// maps) as a group get n/(n + 1) of the choices when there are n of
-    /// them and lights in the scene too. Path tracing only (light tracing and BDPT start paths by power).
+    /// maps) as a group get at most n/(n + 1) of the choices when there
+    /// are n of them and lights in the scene too. Path tracing only (light tracing and BDPT start paths by power).
     #[cfg_attr(feature = "cli", arg(long, value_enum, default_value_t = IntegratorSettings::default().light_selection))]
     pub light_selection: LightSelection,
 
