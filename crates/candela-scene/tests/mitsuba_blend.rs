@@ -9,6 +9,8 @@ use candela_scene::{
 };
 use glam::Vec3;
 
+mod beside_image;
+
 fn strict() -> LoadOptions {
     LoadOptions {
         strict: true,
@@ -19,14 +21,8 @@ fn strict() -> LoadOptions {
 /// Loads a scene of the given elements beside a copy of the conformance
 /// scenes' image.
 fn try_load(name: &str, body: &str, options: &LoadOptions) -> Result<Loaded, LoadError> {
-    let dir = candela_testkit::TempDir::new(name);
-    std::fs::write(
-        dir.join("t.png"),
-        include_bytes!("../../../benches/mitsuba_conformance/textures/quadrants.png"),
-    )
-    .unwrap();
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, format!(r#"<scene version="3.0.0">{body}</scene>"#)).unwrap();
+    let scene = format!(r#"<scene version="3.0.0">{body}</scene>"#);
+    let (_dir, path) = beside_image::write_scene(name, &scene);
     load(&path, options)
 }
 

@@ -9,16 +9,11 @@ use candela_scene::{
 };
 use glam::{Vec2, Vec3};
 
+mod beside_image;
+
 /// Loads `body` (a scene) beside a copy of the conformance scenes' image.
 fn load_scene(name: &str, body: &str) -> Loaded {
-    let dir = candela_testkit::TempDir::new(name);
-    std::fs::write(
-        dir.join("t.png"),
-        include_bytes!("../../../benches/mitsuba_conformance/textures/quadrants.png"),
-    )
-    .unwrap();
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, body).unwrap();
+    let (_dir, path) = beside_image::write_scene(name, body);
     load(&path, &LoadOptions::default()).unwrap()
 }
 

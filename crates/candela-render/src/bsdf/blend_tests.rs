@@ -7,8 +7,6 @@ use glam::{Vec2, Vec3};
 
 use super::test_support::*;
 use super::{Blend, Bsdf, Masking, MicrofacetDistribution, Plastic, RoughPlastic, TransportMode};
-use crate::sampling::warp::square_to_uniform_sphere;
-use crate::sampling::{Sampler, SamplerKind};
 
 fn blend(weight: f32, a: Bsdf, b: Bsdf) -> Bsdf {
     Bsdf::Blend(Box::new(Blend::new(weight, Some(a), Some(b))))
@@ -111,20 +109,6 @@ fn blend_samples_are_consistent() {
     }
 }
 
-/// Random unit direction pairs from a fixed seed.
-fn direction_pairs(n: u32) -> Vec<(Vec3, Vec3)> {
-    let mut sampler = Sampler::new(SamplerKind::Independent, 41);
-    (0..n)
-        .map(|i| {
-            sampler.start_pixel_sample(0, 0, i);
-            (
-                square_to_uniform_sphere(sampler.next_2d()),
-                square_to_uniform_sphere(sampler.next_2d()),
-            )
-        })
-        .collect()
-}
-
 #[test]
 fn value_and_density_are_the_weighted_sums_of_the_parts() {
     let parts = [
@@ -136,7 +120,7 @@ fn value_and_density_are_the_weighted_sums_of_the_parts() {
     for (a, b) in parts {
         for w in [0.0, 0.25, 0.8, 1.0] {
             let mix = blend(w, a.clone(), b.clone());
-            for (wo, wi) in direction_pairs(500) {
+            for (wo, wi) in direction_pairs(500, 41) {
                 for mode in [TransportMode::Radiance, TransportMode::Importance] {
                     let expected = (1.0 - w) * a.f_mode(wo, wi, mode) + w * b.f_mode(wo, wi, mode);
                     let got = mix.f_mode(wo, wi, mode);

@@ -206,3 +206,17 @@ pub(crate) fn energy_factor(wo: Vec3, wi: Vec3, ior: f32) -> f32 {
     let eta = if wo.z > 0.0 { ior } else { 1.0 / ior };
     eta * eta
 }
+
+/// `n` pairs of independent uniform directions on the sphere, from `seed`.
+pub(crate) fn direction_pairs(n: u32, seed: u64) -> Vec<(Vec3, Vec3)> {
+    let mut sampler = Sampler::new(SamplerKind::Independent, seed);
+    (0..n)
+        .map(|i| {
+            sampler.start_pixel_sample(0, 0, i);
+            (
+                square_to_uniform_sphere(sampler.next_2d()),
+                square_to_uniform_sphere(sampler.next_2d()),
+            )
+        })
+        .collect()
+}

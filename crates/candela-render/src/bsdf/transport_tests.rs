@@ -5,13 +5,13 @@
 
 use glam::{Vec2, Vec3};
 
+use super::test_support::direction_pairs;
 use super::transport::{shading_normal_correction, TransportMode};
 use super::Masking;
 use super::{
     Blend, Bsdf, MetallicRoughness, MicrofacetDistribution, Principled, PrincipledParameters,
 };
 use crate::geometry::Frame;
-use crate::sampling::warp::square_to_uniform_sphere;
 use crate::sampling::{Sampler, SamplerKind};
 
 /// Relative agreement of two colours to 0.1 % (f32 half vectors near
@@ -24,20 +24,6 @@ fn assert_close(a: Vec3, b: Vec3, what: &str) {
         (a - b).abs().max_element() <= 1e-3 * scale,
         "{what}: {a} vs {b}"
     );
-}
-
-/// Random unit direction pairs from a fixed seed.
-fn direction_pairs(n: u32) -> Vec<(Vec3, Vec3)> {
-    let mut sampler = Sampler::new(SamplerKind::Independent, 15);
-    (0..n)
-        .map(|i| {
-            sampler.start_pixel_sample(0, 0, i);
-            (
-                square_to_uniform_sphere(sampler.next_2d()),
-                square_to_uniform_sphere(sampler.next_2d()),
-            )
-        })
-        .collect()
 }
 
 fn transmitting_bsdfs() -> Vec<(&'static str, Bsdf)> {
@@ -113,7 +99,7 @@ fn transmitting_bsdfs() -> Vec<(&'static str, Bsdf)> {
 fn importance_bsdf_is_the_radiance_bsdf_with_directions_swapped() {
     let mut transmitted = 0;
     for (name, bsdf) in transmitting_bsdfs() {
-        for (wo, wi) in direction_pairs(4000) {
+        for (wo, wi) in direction_pairs(4000, 15) {
             let importance = bsdf.f_mode(wo, wi, TransportMode::Importance);
             let radiance_swapped = bsdf.f_mode(wi, wo, TransportMode::Radiance);
             assert_close(importance, radiance_swapped, name);
@@ -188,7 +174,7 @@ fn shading_normals_keep_the_adjoint_relation() {
     ));
     let mut asymmetric = 0;
     for (name, bsdf) in bsdfs {
-        for (wo, wi) in direction_pairs(2000) {
+        for (wo, wi) in direction_pairs(2000, 15) {
             if wo.dot(ng).abs() < 1e-3 || wi.dot(ng).abs() < 1e-3 {
                 continue;
             }
@@ -208,7 +194,7 @@ fn shading_normals_keep_the_adjoint_relation() {
 #[test]
 fn radiance_mode_is_the_plain_bsdf() {
     let (_, bsdf) = transmitting_bsdfs().remove(0);
-    for (wo, wi) in direction_pairs(200) {
+    for (wo, wi) in direction_pairs(200, 15) {
         assert_eq!(bsdf.f_mode(wo, wi, TransportMode::Radiance), bsdf.f(wo, wi));
     }
     let n = Vec3::Z;
