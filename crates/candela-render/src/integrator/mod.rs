@@ -16,6 +16,7 @@ pub mod direct;
 pub mod inspect;
 pub mod layers;
 pub mod light_tracer;
+mod medium;
 mod normals;
 pub mod path;
 pub mod record;
