@@ -200,7 +200,7 @@ impl Scene {
         let media = Media::from_desc(desc, materials.len());
         if media.any() {
             unsupported.push(
-                "participating media: traced by the path tracer only (the bidirectional and light tracers ignore them)".into(),
+                "participating media: traced by the path tracer only (the bidirectional and light tracers ignore them, and so do the hemisphere rays of -H)".into(),
             );
         }
         let has_cutouts = materials
