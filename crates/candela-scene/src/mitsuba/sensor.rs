@@ -160,7 +160,7 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
         b.warn(
             doc,
             node,
-            "a medium of a sensor but the first is not supported (the first sensor's is used)",
+            "a sensor medium unlike the first sensor's is not supported (every camera is in the first sensor's medium)",
         )?;
     }
     if b.scene.cameras.is_empty() {
