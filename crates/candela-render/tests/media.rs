@@ -159,3 +159,33 @@ fn an_absorbing_ball_dims_what_is_seen_through_it_by_beer_lambert() {
         assert_converges(&format!("{mode:?}"), &e, expected, Z);
     }
 }
+
+#[test]
+fn integrators_that_ignore_media_say_so() {
+    use candela_render::integrator::{media_ignored, Estimator};
+    use candela_render::scene::{Scene, SceneOptions};
+    let build = |desc: &SceneDesc| {
+        let opts = SceneOptions {
+            width: 4,
+            height: 4,
+            camera_mode: candela_render::camera::framing::CameraMode::File,
+            ..Default::default()
+        };
+        Scene::build(desc, &opts).expect("test scene builds")
+    };
+    let foggy = build(&foggy_furnace(0.5, 0.5, medium(Vec3::ONE, Vec3::ONE, 0.0)));
+    let clear = build(&furnace(0.5, 0.5));
+    let path = IntegratorSettings::path(5, LightingMode::Mis);
+    assert_eq!(media_ignored(&foggy, &path), None);
+    assert_eq!(media_ignored(&clear, &path), None);
+    for estimator in [Estimator::Bdpt, Estimator::Light] {
+        let s = IntegratorSettings {
+            estimator,
+            ..path.clone()
+        };
+        assert!(media_ignored(&foggy, &s).is_some(), "{estimator:?}");
+        assert_eq!(media_ignored(&clear, &s), None);
+    }
+    let hemisphere = IntegratorSettings::path(5, LightingMode::Hemisphere);
+    assert!(media_ignored(&foggy, &hemisphere).unwrap().contains("-H"));
+}

@@ -11,7 +11,29 @@ use crate::light::{LightContext, LightSample, LightSelector};
 use crate::medium::HenyeyGreenstein;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::settings::{Estimator, IntegratorSettings};
 use glam::{Vec2, Vec3};
+
+/// What of `scene`'s media the integrator `settings` leaves out, if
+/// anything, for the front ends to report: only the path tracer (and its
+/// direct and indirect views) traces media, and CS184's hemisphere rays
+/// (`-H`) do not see them.
+pub fn media_ignored(scene: &Scene, settings: &IntegratorSettings) -> Option<&'static str> {
+    if !scene.media.any() {
+        return None;
+    }
+    match settings.estimator {
+        Estimator::Light | Estimator::Bdpt => {
+            Some("participating media: the light and bidirectional tracers ignore them (the path tracer traces them)")
+        }
+        Estimator::Path | Estimator::Direct | Estimator::Indirect
+            if settings.lighting == LightingMode::Hemisphere =>
+        {
+            Some("participating media: the hemisphere rays of -H do not see them (light sampling does)")
+        }
+        _ => None,
+    }
+}
 
 /// Sampler dimensions [`direct_in_medium`] draws in `scene` with `light_samples`
 /// samples per vertex: three per sample, as at surfaces.

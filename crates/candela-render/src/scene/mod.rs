@@ -198,11 +198,6 @@ impl Scene {
         )?;
         let build_time = start.elapsed();
         let media = Media::from_desc(desc, materials.len());
-        if media.any() {
-            unsupported.push(
-                "participating media: traced by the path tracer only (the bidirectional and light tracers ignore them, and so do the hemisphere rays of -H)".into(),
-            );
-        }
         let has_cutouts = materials
             .iter()
             .any(|m| m.textures.has_opacity() || m.invisible);
