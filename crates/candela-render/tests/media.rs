@@ -49,6 +49,30 @@ fn foggy_furnace(albedo: f32, le: f32, fog: MediumDesc) -> SceneDesc {
     desc
 }
 
+/// Adds an invisible ball of `radius` in front of the camera (centre
+/// (0, 0, −0.5)) filled with `inside`.
+fn with_fog_ball(desc: &mut SceneDesc, radius: f32, inside: MediumDesc) {
+    desc.materials
+        .push(material("boundary", BsdfDesc::Null, None));
+    desc.spheres.push(SphereDesc {
+        axes: SphereDesc::Y_POLE,
+        name: "ball".into(),
+        center: Vec3::new(0.0, 0.0, -0.5),
+        radius,
+        material: desc.materials.len() - 1,
+        inward: false,
+        loc: SourceLoc::default(),
+    });
+    desc.media.push(inside);
+    desc.medium_interfaces.push((
+        desc.materials.len() - 1,
+        MediumInterface {
+            interior: Some(desc.media.len() - 1),
+            exterior: None,
+        },
+    ));
+}
+
 #[test]
 fn a_furnace_full_of_lossless_fog_keeps_its_radiance() {
     let (albedo, le) = (0.5f64, 0.5f64);
@@ -79,26 +103,11 @@ fn fog_inside_an_invisible_ball_in_a_clear_furnace_keeps_its_radiance() {
     // go through it.
     let (albedo, le) = (0.6f64, 0.4f64);
     let mut desc = furnace(albedo as f32, le as f32);
-    desc.materials
-        .push(material("boundary", BsdfDesc::Null, None));
-    desc.spheres.push(SphereDesc {
-        axes: SphereDesc::Y_POLE,
-        name: "ball".into(),
-        center: Vec3::new(0.0, 0.0, -0.5),
-        radius: 0.4,
-        material: 1,
-        inward: false,
-        loc: SourceLoc::default(),
-    });
-    desc.media
-        .push(medium(Vec3::new(1.0, 3.0, 8.0), Vec3::ONE, 0.5));
-    desc.medium_interfaces.push((
-        1,
-        MediumInterface {
-            interior: Some(0),
-            exterior: None,
-        },
-    ));
+    with_fog_ball(
+        &mut desc,
+        0.4,
+        medium(Vec3::new(1.0, 3.0, 8.0), Vec3::ONE, 0.5),
+    );
     for (j, mode) in MODES.into_iter().enumerate() {
         let e = estimate(
             &desc,
@@ -127,25 +136,7 @@ fn an_absorbing_ball_dims_what_is_seen_through_it_by_beer_lambert() {
         yfov_deg: 0.5,
     };
     desc.cameras = vec![camera];
-    desc.materials
-        .push(material("boundary", BsdfDesc::Null, None));
-    desc.spheres.push(SphereDesc {
-        axes: SphereDesc::Y_POLE,
-        name: "ball".into(),
-        center: Vec3::new(0.0, 0.0, -0.5),
-        radius: r,
-        material: 1,
-        inward: false,
-        loc: SourceLoc::default(),
-    });
-    desc.media.push(medium(Vec3::splat(sigma), Vec3::ZERO, 0.0));
-    desc.medium_interfaces.push((
-        1,
-        MediumInterface {
-            interior: Some(0),
-            exterior: None,
-        },
-    ));
+    with_fog_ball(&mut desc, r, medium(Vec3::splat(sigma), Vec3::ZERO, 0.0));
     let expected = f64::from(le * (-sigma * 2.0 * r).exp());
     for (j, mode) in MODES.into_iter().enumerate() {
         let e = estimate(

@@ -42,12 +42,25 @@ impl Scene {
     /// [`Scene::intersect_visible`] in a scene with cut-outs.
     #[inline(never)]
     fn intersect_past_cutouts(&self, ray: &Ray, stats: &mut TraversalStats) -> Option<SurfaceHit> {
+        self.intersect_past(ray, stats, false)
+    }
+
+    /// The closest hit along `ray` that does not let it through, or is an
+    /// emitting invisible surface, or (`boundaries`) bounds a medium.
+    #[inline(always)]
+    fn intersect_past(
+        &self,
+        ray: &Ray,
+        stats: &mut TraversalStats,
+        boundaries: bool,
+    ) -> Option<SurfaceHit> {
         let mut hit = self.intersect(ray, stats)?;
         let mut segment = *ray;
         for _ in 0..MAX_CUTOUTS {
             let material = self.material(hit.material);
             let seen_emitting = material.invisible && material.emission.is_some();
-            if seen_emitting || !passes_through(material, &hit, &segment) {
+            let boundary = boundaries && self.media.interface(hit.material).is_some();
+            if seen_emitting || boundary || !passes_through(material, &hit, &segment) {
                 return Some(hit);
             }
             segment = continue_past(&segment, &hit);
@@ -83,19 +96,7 @@ impl Scene {
     /// through are passed here, as there.
     #[inline(never)]
     pub fn intersect_in_media(&self, ray: &Ray, stats: &mut TraversalStats) -> Option<SurfaceHit> {
-        let mut hit = self.intersect(ray, stats)?;
-        let mut segment = *ray;
-        for _ in 0..MAX_CUTOUTS {
-            let material = self.material(hit.material);
-            let seen_emitting = material.invisible && material.emission.is_some();
-            let boundary = self.media.interface(hit.material).is_some();
-            if seen_emitting || boundary || !passes_through(material, &hit, &segment) {
-                return Some(hit);
-            }
-            segment = continue_past(&segment, &hit);
-            hit = self.intersect(&segment, stats)?;
-        }
-        Some(hit)
+        self.intersect_past(ray, stats, true)
     }
 
     /// The fraction of light per channel that travels along `ray` up to its
