@@ -1363,6 +1363,61 @@ add("sensor-clip", header("near_clip 3.5 cuts the spheres' front caps away (twos
     + SENSOR_BODY, WHOLE)
 
 
+# Participating media (Mitsuba's volpath): homogeneous media inside spheres
+# (behind null and dielectric boundaries, inline and by reference) and a fog
+# the camera sits in.
+SMOKE = """    <medium type="homogeneous" id="smoke">
+        <float name="sigma_t" value="8"/>
+        <float name="scale" value="0.5"/>
+        <rgb name="albedo" value="0.95, 0.7, 0.4"/>
+        <phase type="hg">
+            <float name="g" value="0.6"/>
+        </phase>
+    </medium>
+"""
+MEDIA = [
+    ("null ball of grey isotropic fog", """<bsdf type="null"/>
+<medium type="homogeneous" name="interior">
+    <float name="sigma_t" value="6"/>
+    <rgb name="albedo" value="0.9, 0.9, 0.9"/>
+    <phase type="isotropic"/>
+</medium>"""),
+    ("glass with an absorbing coloured inside", """<bsdf type="dielectric">
+    <float name="int_ior" value="1.5"/>
+</bsdf>
+<medium type="homogeneous" name="interior">
+    <rgb name="sigma_t" value="0.05, 0.3, 0.6"/>
+    <float name="scale" value="10"/>
+    <float name="albedo" value="0"/>
+</medium>"""),
+    ("null ball of coloured forward smoke", """<bsdf type="null"/>
+<ref name="interior" id="smoke"/>"""),
+    ("diffuse", """<bsdf type="diffuse">
+    <rgb name="reflectance" value="0.6, 0.6, 0.6"/>
+</bsdf>"""),
+]
+text = header("Homogeneous media inside spheres: null and dielectric boundaries, inline and referenced media, "
+              "isotropic and Henyey-Greenstein phase, coloured sigma_t and albedo.", integrator="volpath") \
+    + SMOKE + cornell()
+for i, (label, b) in enumerate(MEDIA):
+    text += sphere(i, ind(b), f"s{i}")
+add("media-spheres", text, {**slot_regions([l for l, _ in MEDIA]), "back wall": [52, 14, 76, 38]})
+
+FOG = """    <medium type="homogeneous" id="fog">
+        <float name="sigma_t" value="0.25"/>
+        <rgb name="albedo" value="0.8, 0.85, 0.9"/>
+        <phase type="hg">
+            <float name="g" value="0.3"/>
+        </phase>
+    </medium>
+"""
+text = header("A fog filling the box, the camera in it (the sensor's medium); a diffuse and a glass ball.",
+              integrator="volpath", extra_sensor='\n        <ref id="fog"/>')
+text = text.replace("    <sensor", FOG + "    <sensor", 1) + cornell()
+text += sphere(0, ind(MEDIA[3][1]), "s0") + sphere(2, ind(MEDIA[1][1].split("<medium")[0]), "s2")
+add("media-fog", text, {**slot_regions(["diffuse", None, "glass"]), "back wall": [52, 14, 76, 38]})
+
+
 def main():
     write_textures()
     write_ply_sphere(HERE / "textures" / "sphere.ply")

@@ -268,6 +268,9 @@ fn build(loaded: &Loaded, settings: &Settings) -> Result<Scene> {
     for what in &scene.unsupported {
         eprintln!("candela: warning: {source}: not supported yet: {what}");
     }
+    if let Some(what) = candela_render::integrator::media_ignored(&scene, &settings.integrator) {
+        eprintln!("candela: warning: {source}: not supported yet: {what}");
+    }
     if settings.integrator.estimator != Estimator::Normals && scene.lights.is_empty() {
         eprintln!(
             "candela: warning: {source}: the scene has no lights; the image will be black (try --normals)"

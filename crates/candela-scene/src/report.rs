@@ -119,6 +119,24 @@ impl Collector {
         Ok(())
     }
 
+    /// Records a note (see [`Report::notes`]: never an error, even in
+    /// strict mode), once per element and message.
+    pub(crate) fn note(&mut self, element: String, message: String, loc: SourceLoc) {
+        let notes = &mut self.report.notes;
+        match notes
+            .iter_mut()
+            .find(|n| n.element == element && n.message == message)
+        {
+            Some(n) => n.count += 1,
+            None => notes.push(Warning {
+                loc,
+                element,
+                message,
+                count: 1,
+            }),
+        }
+    }
+
     /// Whether warnings are errors (and repairs refused).
     pub(crate) fn strict(&self) -> bool {
         self.strict

@@ -209,6 +209,9 @@ pub fn scene_hash(desc: &SceneDesc, env_map: Option<&Path>) -> ContentHash {
         materials,
         lights,
         environment,
+        media,
+        medium_interfaces,
+        camera_medium,
     } = desc;
     let mut h = ContentHasher::new();
     h.write(b"candela scene v1");
@@ -224,6 +227,13 @@ pub fn scene_hash(desc: &SceneDesc, env_map: Option<&Path>) -> ContentHash {
     h.debug(materials);
     h.debug(lights);
     h.debug(environment);
+    // Only when present, as vertex colours above: scenes without media keep
+    // their hash.
+    if !media.is_empty() {
+        h.debug(media);
+        h.debug(medium_interfaces);
+        h.debug(camera_medium);
+    }
     for material in materials {
         for path in material.textures.iter().filter_map(|(_, t)| t.image_path()) {
             h.file(path);

@@ -58,7 +58,7 @@ pub enum LightingMode {
 /// Sampler dimensions of one light sample: the light's choice and a point
 /// on it (the choice's own dimension is drawn only when the point's number
 /// cannot also make the choice).
-const LIGHT_SAMPLE_DIMENSIONS: u32 = 3;
+pub(super) const LIGHT_SAMPLE_DIMENSIONS: u32 = 3;
 
 /// Sampler dimensions one [`estimate_direct`] call draws in `scene`: two per
 /// hemisphere ray, [`LIGHT_SAMPLE_DIMENSIONS`] per light sample, none for
@@ -281,8 +281,13 @@ fn emission_crossed(
 /// kept as they are computed: the offset depends on a direction only through
 /// its side, so the vertex's `-l` light samples and its bounce mostly share
 /// one (the bounce's offset was about 70 instructions, 1% of the render loop).
+///
+/// In a scene with media it also holds the medium a ray leaving the vertex
+/// starts in, by the same side (the path sets it: it knows the medium it
+/// arrived in and the surface's interface); shadow rays then carry the
+/// media's transmittance instead of a yes or no.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct SpawnOrigins([Option<(Vec3, f32)>; 2]);
+pub struct SpawnOrigins([Option<(Vec3, f32)>; 2], Option<[Option<u32>; 2]>);
 
 impl SpawnOrigins {
     /// The slot of `w`'s side of the geometric normal (1: below).
@@ -301,6 +306,12 @@ impl SpawnOrigins {
             let origin = hit.spawn_origin(w);
             (origin, (origin - hit.p).length())
         })
+    }
+
+    /// Sets the media a ray toward each side of the vertex starts in
+    /// (`[the arriving ray's side, the other side]`).
+    pub fn set_media(&mut self, sides: [Option<u32>; 2]) {
+        self.1 = Some(sides);
     }
 
     /// `hit.spawn_origin(w)`: the kept origin of `w`'s side, else computed
@@ -385,11 +396,25 @@ impl Vertex<'_> {
         if f == Vec3::ZERO {
             return Vec3::ZERO;
         }
-        let visible = self.unoccluded(s.wi, wi_dot_ng < 0.0, s.distance, ctx);
-        event.visible = Some(visible);
-        if !visible {
-            return Vec3::ZERO;
-        }
+        let below = wi_dot_ng < 0.0;
+        let transmitted = match self.origins.1 {
+            None => {
+                let visible = self.unoccluded(s.wi, below, s.distance, ctx);
+                event.visible = Some(visible);
+                if !visible {
+                    return Vec3::ZERO;
+                }
+                Vec3::ONE
+            }
+            Some(media) => {
+                let tr = self.transmitted(s.wi, below, s.distance, media[usize::from(below)], ctx);
+                event.visible = Some(tr != Vec3::ZERO);
+                if tr == Vec3::ZERO {
+                    return Vec3::ZERO;
+                }
+                tr
+            }
+        };
         let weight = match mis_count {
             Some(n) => {
                 let bsdf_pdf = bsdf.pdf(self.wo, wi);
@@ -399,7 +424,28 @@ impl Vertex<'_> {
             None => 1.0,
         };
         event.mis_weight = weight;
-        f * s.l * wi.z.abs() * (weight / s.pdf)
+        f * s.l * wi.z.abs() * (weight / s.pdf) * transmitted
+    }
+
+    /// The media's transmittance along the shadow ray of
+    /// [`Vertex::unoccluded`], which starts in `medium`; zero if blocked.
+    fn transmitted(
+        &mut self,
+        wi: Vec3,
+        below: bool,
+        distance: f32,
+        medium: Option<u32>,
+        ctx: &mut ThreadContext,
+    ) -> Vec3 {
+        let (origin, offset) = self.origins.toward(self.hit, wi, below);
+        let mut ray = Ray::new(origin, wi);
+        ray.t_max = shadow_t_max(distance, offset);
+        if ray.t_max <= 0.0 {
+            return Vec3::ONE;
+        }
+        ctx.rays.shadow += 1;
+        self.scene
+            .transmittance(&ray, medium, &mut ctx.rays.traversal)
     }
 
     /// Whether the segment from the vertex toward `wi` (`below` the
@@ -413,11 +459,7 @@ impl Vertex<'_> {
         ctx: &mut ThreadContext,
     ) -> bool {
         let (origin, offset) = self.origins.toward(self.hit, wi, below);
-        let t_max = if distance.is_finite() {
-            (distance - offset) * (1.0 - SHADOW_EPSILON)
-        } else {
-            f32::INFINITY
-        };
+        let t_max = shadow_t_max(distance, offset);
         if t_max <= 0.0 {
             return true;
         }
@@ -425,6 +467,18 @@ impl Vertex<'_> {
         ray.t_max = t_max;
         ctx.rays.shadow += 1;
         !self.scene.occluded_visible(&ray, &mut ctx.rays.traversal)
+    }
+}
+
+/// The end of a shadow ray toward a light sample `distance` from the point,
+/// from an origin `offset` from it: short of the light's surface by
+/// [`SHADOW_EPSILON`] (unbounded for lights at infinity).
+#[inline(always)]
+pub(super) fn shadow_t_max(distance: f32, offset: f32) -> f32 {
+    if distance.is_finite() {
+        (distance - offset) * (1.0 - SHADOW_EPSILON)
+    } else {
+        f32::INFINITY
     }
 }
 

@@ -16,6 +16,7 @@ pub mod direct;
 pub mod inspect;
 pub mod layers;
 pub mod light_tracer;
+mod medium;
 mod normals;
 pub mod path;
 pub mod record;
@@ -23,6 +24,7 @@ pub mod record;
 pub use bdpt::BidirSettings;
 pub use direct::LightingMode;
 pub use layers::{layer_names, layered_pixel_sample};
+pub use medium::media_ignored;
 pub use path::PathSettings;
 pub use record::PathRecorder;
 

@@ -25,14 +25,17 @@
 use super::direct::{
     bsdf_hit_weight, direct_dimensions, estimate_direct, light_context, LightingMode, SpawnOrigins,
 };
+use super::medium::{medium_direct_dimensions, MediumVertex};
 use super::record::{EmissionEvent, PathEnd, PathRecorder, ScatterEvent};
 use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::Bsdf;
 use crate::geometry::Ray;
 use crate::light::{LightContext, LightSelection, LightSelector};
+use crate::medium::FreeFlight;
 use crate::sampling::Sampler;
 use crate::scene::{continue_past, Scene, MAX_CUTOUTS};
 use crate::settings::ROULETTE_THRESHOLD;
+use crate::shading::opacity::passes_through;
 use crate::shading::{sample_scatter, shading_frame, NoScatter, ShadingFrame};
 use crate::shape::SurfaceHit;
 use glam::Vec3;
@@ -71,6 +74,33 @@ impl Default for PathSettings {
     }
 }
 
+/// Russian roulette after the bounce that made the path `depth` bounces
+/// long: ends it with probability 1 − throughput / threshold (see the
+/// module docs) or divides the survivor's throughput by its chance; false
+/// when the path ends.
+#[inline(always)]
+fn survives_roulette<R: PathRecorder>(
+    settings: &PathSettings,
+    depth: u32,
+    beta: &mut Vec3,
+    eta_scale: f32,
+    sampler: &mut Sampler,
+    rec: &mut R,
+) -> bool {
+    if let Some(from) = settings.roulette_from {
+        if depth >= from {
+            let survive = ((*beta * eta_scale).max_element() / ROULETTE_THRESHOLD).min(1.0);
+            if survive <= 0.0 || sampler.next_1d() >= survive {
+                rec.roulette(survive, false, *beta);
+                return false;
+            }
+            *beta /= survive;
+            rec.roulette(survive, true, *beta);
+        }
+    }
+    true
+}
+
 /// Where the previous scattering event was, for MIS at the next emitter.
 #[derive(Clone, Copy)]
 struct PrevVertex {
@@ -103,8 +133,70 @@ pub fn path_radiance<R: PathRecorder>(
     // Emitting invisible surfaces the path has gone through.
     let mut crossed = 0u32;
     let selector = scene.lights.selector(settings.light_selection);
+    // Participating media (`crate::medium`): the medium the path is in.
+    let media = scene.media.any();
+    let mut medium = scene.media.camera;
     let end = loop {
-        let Some(hit) = scene.intersect_visible(&ray, &mut ctx.rays.traversal) else {
+        let found = if media {
+            scene.intersect_in_media(&ray, &mut ctx.rays.traversal)
+        } else {
+            scene.intersect_visible(&ray, &mut ctx.rays.traversal)
+        };
+        if let Some(m) = medium.filter(|_| media) {
+            let length = found
+                .as_ref()
+                .map_or(f32::INFINITY, |h| (h.p - ray.origin).length());
+            match scene
+                .media
+                .get(m)
+                .sample_distance(length, sampler.next_2d())
+            {
+                FreeFlight::Passed { weight } => beta *= weight,
+                FreeFlight::Scattered { distance, weight } => {
+                    beta *= weight;
+                    if depth >= max_depth {
+                        break PathEnd::MaxDepth;
+                    }
+                    let dir = ray.dir.normalize();
+                    let vertex = MediumVertex {
+                        scene,
+                        p: ray.origin + dir * distance,
+                        wo: -dir,
+                        phase: &scene.media.get(m).phase,
+                        medium: m,
+                    };
+                    if settings.bounces.contains(&(depth + 1)) {
+                        let term = beta
+                            * vertex.direct(
+                                settings.lighting,
+                                settings.light_samples,
+                                &selector,
+                                sampler,
+                                ctx,
+                            );
+                        l += term;
+                        rec.radiance_term(depth + 1, term);
+                    } else {
+                        sampler.skip(medium_direct_dimensions(scene, settings.light_samples));
+                    }
+                    // Sampled in proportion to its value: the weight is one.
+                    let (wi, phase_pdf) = vertex.phase.sample(vertex.wo, sampler.next_2d());
+                    prev = Some(PrevVertex {
+                        receiver: LightContext::point(vertex.p),
+                        bsdf_pdf: phase_pdf,
+                        specular: false,
+                    });
+                    ray = Ray::new(vertex.p, wi);
+                    ctx.rays.bounce += 1;
+                    depth += 1;
+                    if !survives_roulette(settings, depth, &mut beta, eta_scale, sampler, rec) {
+                        break PathEnd::Roulette;
+                    }
+                    continue;
+                }
+            }
+        }
+        let Some(hit) = found else {
             rec.escape(depth, &ray, beta);
             if settings.bounces.contains(&depth) {
                 let term = beta * escaped_radiance(scene, &selector, &ray, prev, settings, rec);
@@ -131,7 +223,18 @@ pub fn path_radiance<R: PathRecorder>(
         }
         // Emitters hidden from the camera are not there for camera rays.
         let hidden = depth == 0 && settings.hide_emitters && material.emission.is_some();
-        if material.invisible || hidden {
+        // A medium's boundary that lets the ray through where it met it (a
+        // cut-out; invisible surfaces are the common case).
+        let passed_boundary = media
+            && !material.invisible
+            && scene.media.interface(hit.material).is_some()
+            && passes_through(material, &hit, &ray);
+        if material.invisible || hidden || passed_boundary {
+            if media {
+                medium = scene
+                    .media
+                    .after(hit.material, hit.front_face, true, medium);
+            }
             // An emitting null surface: its emission is in, and the path goes
             // on as if it were not there (`scene/visibility.rs`).
             crossed += 1;
@@ -166,6 +269,16 @@ pub fn path_radiance<R: PathRecorder>(
         let receiver = light_context(&hit, bsdf);
         // Offset origins of the shadow rays, which the bounce reuses.
         let mut origins = SpawnOrigins::default();
+        if media {
+            origins.set_media([
+                scene
+                    .media
+                    .after(hit.material, hit.front_face, false, medium),
+                scene
+                    .media
+                    .after(hit.material, hit.front_face, true, medium),
+            ]);
+        }
         if !bsdf.flags().is_specular() {
             let term = beta
                 * direct_at_vertex(
@@ -217,19 +330,16 @@ pub fn path_radiance<R: PathRecorder>(
             bsdf_pdf: s.pdf,
             specular: s.flags.is_specular(),
         });
+        if media {
+            medium = scene
+                .media
+                .after(hit.material, hit.front_face, wi.dot(hit.ng) < 0.0, medium);
+        }
         ray = Ray::new(origins.origin_toward(&hit, wi), wi);
         ctx.rays.bounce += 1;
         depth += 1;
-        if let Some(from) = settings.roulette_from {
-            if depth >= from {
-                let survive = ((beta * eta_scale).max_element() / ROULETTE_THRESHOLD).min(1.0);
-                if survive <= 0.0 || sampler.next_1d() >= survive {
-                    rec.roulette(survive, false, beta);
-                    break PathEnd::Roulette;
-                }
-                beta /= survive;
-                rec.roulette(survive, true, beta);
-            }
+        if !survives_roulette(settings, depth, &mut beta, eta_scale, sampler, rec) {
+            break PathEnd::Roulette;
         }
     };
     rec.end(end, l);

@@ -22,6 +22,7 @@ use crate::camera::{Camera, CameraView, FilmFilter, PixelFilter};
 use crate::geometry::Ray;
 use crate::light::{EnvironmentMap, EnvironmentOptions, LightSet, SceneSphere};
 use crate::material::Material;
+use crate::medium::Media;
 use crate::shape::SurfaceHit;
 use crate::texture::TextureCache;
 use candela_bvh::BuildStrategy;
@@ -117,6 +118,8 @@ pub struct Scene {
     /// Whether any material has an opacity texture (rays then continue
     /// through cut-outs: `visibility.rs`).
     pub has_cutouts: bool,
+    /// Participating media, the surfaces that bound them and the camera's.
+    pub media: Media,
     accel: Accel,
     /// The sphere around the description's bounding box.
     scene_sphere: SceneSphere,
@@ -194,6 +197,7 @@ impl Scene {
             opts.bvh,
         )?;
         let build_time = start.elapsed();
+        let media = Media::from_desc(desc, materials.len());
         let has_cutouts = materials
             .iter()
             .any(|m| m.textures.has_opacity() || m.invisible);
@@ -206,6 +210,7 @@ impl Scene {
             unsupported,
             warnings,
             has_cutouts,
+            media,
             accel,
             scene_sphere,
             build_time,

@@ -19,6 +19,7 @@ use crate::geometry::Ray;
 use crate::shading::opacity::passes_through;
 use crate::shape::SurfaceHit;
 use candela_bvh::TraversalStats;
+use glam::Vec3;
 
 /// Cut-outs (or emitting invisible surfaces, for a path) crossed before a
 /// ray gives up and takes the surface it is on (a guard against
@@ -41,12 +42,25 @@ impl Scene {
     /// [`Scene::intersect_visible`] in a scene with cut-outs.
     #[inline(never)]
     fn intersect_past_cutouts(&self, ray: &Ray, stats: &mut TraversalStats) -> Option<SurfaceHit> {
+        self.intersect_past(ray, stats, false)
+    }
+
+    /// The closest hit along `ray` that does not let it through, or is an
+    /// emitting invisible surface, or (`boundaries`) bounds a medium.
+    #[inline(always)]
+    fn intersect_past(
+        &self,
+        ray: &Ray,
+        stats: &mut TraversalStats,
+        boundaries: bool,
+    ) -> Option<SurfaceHit> {
         let mut hit = self.intersect(ray, stats)?;
         let mut segment = *ray;
         for _ in 0..MAX_CUTOUTS {
             let material = self.material(hit.material);
             let seen_emitting = material.invisible && material.emission.is_some();
-            if seen_emitting || !passes_through(material, &hit, &segment) {
+            let boundary = boundaries && self.media.interface(hit.material).is_some();
+            if seen_emitting || boundary || !passes_through(material, &hit, &segment) {
                 return Some(hit);
             }
             segment = continue_past(&segment, &hit);
@@ -73,6 +87,53 @@ impl Scene {
             hit = self.intersect_visible(&segment, stats)?;
         }
         Some(hit)
+    }
+
+    /// In a scene with media, the closest surface along `ray` the path
+    /// tracer stops at: what [`Scene::intersect_visible`] finds, and also
+    /// every surface that bounds a medium (an invisible one included), where
+    /// the path changes medium. Surfaces that bound nothing and let the ray
+    /// through are passed here, as there.
+    #[inline(never)]
+    pub fn intersect_in_media(&self, ray: &Ray, stats: &mut TraversalStats) -> Option<SurfaceHit> {
+        self.intersect_past(ray, stats, true)
+    }
+
+    /// The fraction of light per channel that travels along `ray` up to its
+    /// `t_max`, starting in `medium`: zero if a surface that does not let
+    /// it through is in the way, else the product of the media's
+    /// transmittances over the pieces between the surfaces it passes
+    /// (invisible ones and cut-outs), changing medium at their boundaries.
+    pub fn transmittance(
+        &self,
+        ray: &Ray,
+        mut medium: Option<u32>,
+        stats: &mut TraversalStats,
+    ) -> Vec3 {
+        let mut tr = Vec3::ONE;
+        let mut segment = *ray;
+        for _ in 0..MAX_CUTOUTS {
+            let hit = self.intersect(&segment, stats);
+            if let Some(m) = medium {
+                let t = hit.as_ref().map_or(segment.t_max, |h| h.t);
+                tr *= self.media.get(m).transmittance(t * segment.dir.length());
+                if tr == Vec3::ZERO {
+                    return tr;
+                }
+            }
+            let Some(hit) = hit else {
+                return tr;
+            };
+            if !passes_through(self.material(hit.material), &hit, &segment) {
+                return Vec3::ZERO;
+            }
+            medium = self.media.after(hit.material, hit.front_face, true, medium);
+            segment = continue_past(&segment, &hit);
+            if segment.t_max <= 0.0 {
+                return tr;
+            }
+        }
+        Vec3::ZERO
     }
 
     /// Whether something that is not cut out blocks `ray` before its `t_max`.

@@ -74,6 +74,47 @@ pub struct SceneDesc {
     /// Light arriving from infinitely far away in every direction, if the
     /// file describes some (a renderer's own environment option replaces it).
     pub environment: Option<EnvironmentDesc>,
+    /// Participating media, in file order; [`SceneDesc::medium_interfaces`]
+    /// and [`SceneDesc::camera_medium`] refer to them by index.
+    pub media: Vec<MediumDesc>,
+    /// The media on either side of the surfaces of a material, by material
+    /// index. A surface whose material has no entry is no boundary: a ray
+    /// crossing it stays in its medium (pbrt-v4 and Mitsuba 3 alike). A
+    /// loader whose format attaches media to shapes gives such a shape a
+    /// material of its own.
+    pub medium_interfaces: Vec<(usize, MediumInterface)>,
+    /// The medium the camera sits in (`None`: vacuum).
+    pub camera_medium: Option<usize>,
+}
+
+/// A homogeneous participating medium: it absorbs and scatters at rates that
+/// are the same everywhere inside it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MediumDesc {
+    /// Name (Mitsuba's `id`).
+    pub name: String,
+    /// Extinction coefficient per channel, per unit of world length
+    /// (Mitsuba's `sigma_t` times its `scale`).
+    pub sigma_t: Vec3,
+    /// Single-scattering albedo per channel: the scattered fraction of what
+    /// is extinguished (`sigma_s = albedo · sigma_t`), in [0, 1].
+    pub albedo: Vec3,
+    /// Henyey–Greenstein asymmetry of the phase function, in (-1, 1); 0 is
+    /// isotropic, positive scatters forward.
+    pub phase_g: f32,
+    /// Where the medium was described.
+    pub loc: SourceLoc,
+}
+
+/// The media on the two sides of a surface, by index into
+/// [`SceneDesc::media`]; `None` is vacuum.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MediumInterface {
+    /// The medium on the side opposite the surface's geometric normal
+    /// (inside a closed shape with outward normals).
+    pub interior: Option<usize>,
+    /// The medium on the side the geometric normal points to.
+    pub exterior: Option<usize>,
 }
 
 /// An environment (light at infinity over the whole sphere of directions).

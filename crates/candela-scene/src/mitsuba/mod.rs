@@ -10,7 +10,9 @@
 //!   every BSDF: the smooth and rough models, `principled` in
 //!   `principled.rs`, `blendbsdf` in `blend.rs`) and `textures.rs`; emitters
 //!   `emitters.rs`; the sensor, film, sampler and integrator `sensor.rs`
-//!   (they become [`crate::RenderHints`]).
+//!   (they become [`crate::RenderHints`]); participating media
+//!   `media.rs` (homogeneous ones, traced only when the file's integrator
+//!   is a volumetric one, as in Mitsuba).
 //! - Coordinates are kept as they are: Mitsuba's world has no up axis of its
 //!   own and its environment maps are +Y up, as Candela's.
 //!
@@ -23,6 +25,7 @@ mod bsdfs;
 mod cie_tables;
 mod doc;
 mod emitters;
+mod media;
 mod principled;
 mod sensor;
 mod serialized;
@@ -62,8 +65,13 @@ pub(crate) fn load_file(path: &Path, opts: &LoadOptions) -> Result<Loaded, LoadE
         textures: HashMap::new(),
         groups: HashMap::new(),
         default_material: None,
+        media_by_id: HashMap::new(),
+        phases: HashMap::new(),
+        volumes: HashMap::new(),
+        integrator: None,
     };
     b.read_file(path, &defines, None)?;
+    b.drop_media_the_integrator_ignores();
     Ok(Loaded {
         scene: b.scene,
         report: b.warnings.finish(),
@@ -88,6 +96,15 @@ struct Builder {
     groups: HashMap<String, Vec<shapes::GroupItem>>,
     /// Index of the grey material of shapes that name none.
     default_material: Option<usize>,
+    /// Named media (`<medium id>`): the index in `scene.media`, `None` for
+    /// one Candela lacks (reported where it is defined).
+    media_by_id: HashMap<String, Option<usize>>,
+    /// Named phase functions (`<phase id>`) as Henyey–Greenstein g.
+    phases: HashMap<String, Option<f32>>,
+    /// Named constant volumes (`<volume id>`).
+    volumes: HashMap<String, Option<glam::Vec3>>,
+    /// The `<integrator>` read, if any (Mitsuba's default is `path`).
+    integrator: Option<media::IntegratorSeen>,
 }
 
 impl Builder {
@@ -201,9 +218,7 @@ impl Builder {
                     )?,
                 }
             }
-            "medium" | "phase" | "volume" => {
-                self.warn(doc, node, "participating media are not supported (ignored)")?
-            }
+            "medium" | "phase" | "volume" => self.named_medium_part(doc, node)?,
             other => {
                 return Err(doc.err(
                     node,

@@ -34,7 +34,8 @@
 //! depth is `max_depth − 1`, and `−1` (unlimited) becomes
 //! [`UNLIMITED_DEPTH`] (Russian roulette ends paths long before).
 
-use super::doc::{elements, Doc, XNode};
+use super::doc::{describe, elements, Doc, XNode};
+use super::media::IntegratorSeen;
 use super::transform::to_world;
 use super::values::{boolean, float, integer, string};
 use super::Builder;
@@ -49,11 +50,17 @@ pub(crate) const UNLIMITED_DEPTH: u32 = 1024;
 /// Mitsuba's default film size.
 const DEFAULT_FILM: (u32, u32) = (768, 576);
 
-/// An `<integrator>`: `path` (and its relatives) give the depth.
+/// An `<integrator>`: `path` (and its relatives) give the depth; its type
+/// decides whether media are traced (`media.rs`).
 pub(super) fn integrator(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), LoadError> {
     let kind = doc.plugin_type(node)?;
+    b.integrator = Some(IntegratorSeen {
+        kind: kind.clone(),
+        element: describe(node),
+        loc: doc.loc(node),
+    });
     let depth = match kind.as_str() {
-        "path" | "volpath" | "volpathmis" | "prb" | "prb_basic" => {
+        "path" | "volpath" | "volpathmis" | "prbvolpath" | "prb" | "prb_basic" => {
             integer(doc, node, "max_depth", -1)?
         }
         "direct" => 2,
@@ -145,6 +152,16 @@ pub(super) fn sensor(b: &mut Builder, doc: &Doc, node: XNode) -> Result<(), Load
             ErrorKind::DegenerateCamera,
             format!("clip range [{near}, {far}] is empty"),
         ));
+    }
+    let medium = b.sensor_medium(doc, node)?;
+    if b.scene.cameras.is_empty() {
+        b.scene.camera_medium = medium;
+    } else if medium != b.scene.camera_medium {
+        b.warn(
+            doc,
+            node,
+            "a sensor medium unlike the first sensor's is not supported (every camera is in the first sensor's medium)",
+        )?;
     }
     if b.scene.cameras.is_empty() {
         b.hints.file_camera = true;

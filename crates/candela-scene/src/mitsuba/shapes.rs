@@ -2,7 +2,9 @@
 //! (tessellated), `sphere` (analytic), and `shapegroup` + `instance` (each
 //! mesh stored once, drawn by one [`InstanceDesc`] per instance). A
 //! shape's `to_world` becomes its instance transform; a sphere's is applied
-//! to its centre and radius (so it must scale uniformly).
+//! to its centre and radius (so it must scale uniformly). A shape's
+//! interior and exterior media (`media.rs`) give it a material of its own
+//! (also inside a shape group, whose instances then share it).
 
 use super::bsdfs::set;
 use super::doc::{elements, Doc, XNode};
@@ -10,9 +12,18 @@ use super::emitters::area_radiance;
 use super::transform::to_world;
 use super::values::{boolean, float, integer, point};
 use super::{tessellate, Builder};
-use crate::desc::{BsdfDesc, InstanceDesc, MaterialDesc, MeshDesc, SphereDesc, TextureSlot};
+use crate::desc::{
+    BsdfDesc, InstanceDesc, MaterialDesc, MediumInterface, MeshDesc, SphereDesc, TextureSlot,
+};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4, Vec3};
+
+/// A shape's surface material: one shared with other shapes (a named
+/// BSDF's, the default), or one of its own, not yet in the scene.
+enum Surface {
+    Shared(usize),
+    Own(Box<MaterialDesc>),
+}
 
 /// A shape of a group, in the group's space.
 #[derive(Clone, Debug)]
@@ -238,18 +249,56 @@ impl Builder {
         Ok(())
     }
 
-    /// The material of a shape: its `<bsdf>` or `<ref>`, plus the radiance
-    /// of its area `<emitter>`. Without a BSDF, Mitsuba gives a shape a
-    /// one-sided grey diffuse, but an emitting shape a black one: its lamps
-    /// reflect nothing unless the scene says so (measured: Mitsuba renders a
-    /// lamp without a BSDF exactly as one with a black `diffuse`).
+    /// The material of a shape: its surface's (see [`Self::surface`]), or
+    /// a copy of it when the shape has media, with the media recorded in
+    /// [`crate::SceneDesc::medium_interfaces`]. Mitsuba attaches media to
+    /// shapes, the description to materials, so a shape with media gets a
+    /// material of its own (never the one cached for a named BSDF, which
+    /// other shapes share).
     fn shape_material(&mut self, doc: &Doc, node: XNode) -> Result<usize, LoadError> {
+        let sides = self.shape_media(doc, node)?;
+        let surface = self.surface(doc, node)?;
+        if sides == MediumInterface::default() {
+            return Ok(match surface {
+                Surface::Shared(i) => i,
+                Surface::Own(m) => self.push_material(*m),
+            });
+        }
+        let material = match surface {
+            Surface::Shared(i) => self.scene.materials[i].clone(),
+            Surface::Own(m) => *m,
+        };
+        let i = self.push_material(material);
+        self.scene.medium_interfaces.push((i, sides));
+        Ok(i)
+    }
+
+    /// The surface of a shape: its `<bsdf>` or `<ref>` (a reference to a
+    /// medium is no BSDF: see `media.rs`), plus the radiance of its area
+    /// `<emitter>`. Without a BSDF, Mitsuba gives a shape a one-sided grey
+    /// diffuse, but an emitting shape a black one: its lamps reflect
+    /// nothing unless the scene says so (measured: Mitsuba renders a lamp
+    /// without a BSDF exactly as one with a black `diffuse`).
+    fn surface(&mut self, doc: &Doc, node: XNode) -> Result<Surface, LoadError> {
         let (mut inline, mut named, mut emission, mut emission_texture) = (None, None, None, None);
         for c in elements(node) {
             match c.tag_name().name() {
                 "bsdf" => inline = Some(self.bsdf(doc, c)?),
                 "ref" => {
                     let id = doc.required(c, "id")?;
+                    if self.is_medium_id(&id) {
+                        continue;
+                    }
+                    let side = doc.attr(c, "name")?;
+                    if matches!(side.as_deref(), Some("interior" | "exterior"))
+                        && !self.bsdfs.contains_key(&id)
+                    {
+                        return Err(doc.err(
+                            c,
+                            ErrorKind::MissingReference,
+                            format!("no <medium> with id \"{id}\" (defined before this shape)"),
+                        ));
+                    }
                     named = Some((self.named_bsdf(doc, c, &id)?, id));
                 }
                 "emitter" => {
@@ -263,22 +312,22 @@ impl Builder {
         if emission.is_none() {
             if let Some((m, id)) = &named {
                 if let Some(&i) = self.bsdf_materials.get(id) {
-                    return Ok(i);
+                    return Ok(Surface::Shared(i));
                 }
                 let i = self.push_material(m.clone());
                 self.bsdf_materials.insert(id.clone(), i);
-                return Ok(i);
+                return Ok(Surface::Shared(i));
             }
         }
         let material = match inline.or(named.map(|(m, _)| m)) {
             Some(m) => m,
             None if emission.is_none() => {
                 if let Some(i) = self.default_material {
-                    return Ok(i);
+                    return Ok(Surface::Shared(i));
                 }
                 let i = self.push_material(Self::default_diffuse());
                 self.default_material = Some(i);
-                return Ok(i);
+                return Ok(Surface::Shared(i));
             }
             None => MaterialDesc {
                 bsdf: BsdfDesc::Black,
@@ -294,7 +343,7 @@ impl Builder {
             TextureSlot::Emission,
             emission_texture,
         );
-        Ok(self.push_material(material))
+        Ok(Surface::Own(Box::new(material)))
     }
 
     fn push_material(&mut self, m: MaterialDesc) -> usize {

@@ -12,8 +12,11 @@
 //!   energy (a flat 1 becomes RGB (1.205, 0.948, 0.909), sRGB's white being
 //!   D65), and only negative channels are clamped;
 //! - elsewhere it is a reflectance seen under D65 (a flat spectrum stays
-//!   flat) and is clamped to [0, 1], except a conductor's `eta` and `k`,
-//!   which may exceed 1.
+//!   flat) and is clamped to [0, 1], except a conductor's `eta` and `k`
+//!   and the `value` of a `<volume>` (a medium's constant `sigma_t` or
+//!   `albedo`), which may exceed 1. A medium's `sigma_t` given directly as
+//!   a `<spectrum>` is clamped as a reflectance, as in Mitsuba (which
+//!   warns; so does the medium reader).
 //!
 //! Checked against Mitsuba 3.9's own `spectrum_list_to_srgb` and its XML
 //! parser (emitter radiance, diffuse reflectance, conductor `k`): see the
@@ -54,10 +57,21 @@ impl SpectrumReading {
             .any(|a| a.is_element() && a.tag_name().name() == "emitter");
         let name = doc.attr(node, "name")?;
         let optical_constant = matches!(name.as_deref(), Some("eta" | "k"));
+        let in_volume = node
+            .ancestors()
+            .any(|a| a.is_element() && a.tag_name().name() == "volume");
         Ok(Self {
             emitted,
-            unbounded: emitted || optical_constant,
+            unbounded: emitted || optical_constant || in_volume,
         })
+    }
+
+    /// This reading without its upper clamp (to tell whether it clamped).
+    pub(super) fn unclamped(self) -> Self {
+        Self {
+            unbounded: true,
+            ..self
+        }
     }
 
     /// A flat spectrum of `value` (a `<spectrum value="v">`): Mitsuba

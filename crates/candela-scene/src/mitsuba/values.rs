@@ -177,6 +177,15 @@ pub(super) fn constant_color(doc: &Doc, node: XNode) -> Result<Option<Vec3>, Loa
 /// A `<spectrum>`: one number (flat) or `wavelength:value` pairs in
 /// increasing wavelength, as linear RGB (see the module docs).
 pub(super) fn spectrum(doc: &Doc, node: XNode) -> Result<Vec3, LoadError> {
+    spectrum_read_as(doc, node, SpectrumReading::of(doc, node)?)
+}
+
+/// A `<spectrum>` read as `reading` says (see [`spectrum`]).
+pub(super) fn spectrum_read_as(
+    doc: &Doc,
+    node: XNode,
+    reading: SpectrumReading,
+) -> Result<Vec3, LoadError> {
     let Some(text) = doc.attr(node, "value")? else {
         return Err(doc.err(
             node,
@@ -184,7 +193,6 @@ pub(super) fn spectrum(doc: &Doc, node: XNode) -> Result<Vec3, LoadError> {
             "only inline spectra (value=\"...\") are supported",
         ));
     };
-    let reading = SpectrumReading::of(doc, node)?;
     if !text.contains(':') {
         let v = numbers(doc, node, &text)?;
         if v.len() != 1 {
