@@ -476,3 +476,63 @@ fn sampler_wrap_modes_are_kept_per_axis() {
     assert_eq!(wrap(TextureSlot::Roughness), repeat_clamp);
     assert_eq!(wrap(TextureSlot::Normal), TextureWrap::REPEAT);
 }
+
+#[test]
+fn khr_materials_volume_fills_thick_meshes_with_an_absorbing_medium() {
+    // Material 0: thick, white turns (0.5, 0.25, 1) after 2 units; material
+    // 1: the same colour but thin-walled (thicknessFactor 0, the default);
+    // material 2: thick with no attenuation distance (infinite: clear).
+    let text = gltf_text(|d| {
+        d["extensionsUsed"] = json!([
+            "KHR_lights_punctual",
+            "KHR_materials_transmission",
+            "KHR_materials_volume"
+        ]);
+        let volume = |v: serde_json::Value| {
+            json!({"extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                                  "KHR_materials_volume": v}})
+        };
+        d["materials"] = json!([
+            volume(json!({"thicknessFactor": 0.1, "attenuationDistance": 2.0,
+                          "attenuationColor": [0.5, 0.25, 1.0]})),
+            volume(json!({"attenuationDistance": 2.0, "attenuationColor": [0.5, 0.25, 1.0]})),
+            volume(json!({"thicknessFactor": 1.0, "attenuationColor": [0.5, 0.25, 1.0]})),
+        ]);
+        let primitive = d["meshes"][0]["primitives"][0].clone();
+        let with = |i: usize| {
+            let mut p = primitive.clone();
+            p["material"] = json!(i);
+            p
+        };
+        d["meshes"][0]["primitives"] = json!([with(0), with(1), with(2)]);
+    });
+    let l = load_ok(&write("volume.gltf", &text));
+    let s = &l.scene;
+    assert!(l.report.warnings.is_empty(), "{}", l.report);
+    assert_eq!(s.media.len(), 1, "only the thick, attenuating material");
+    let m = &s.media[0];
+    let expected = Vec3::new(0.5f32.ln(), 0.25f32.ln(), 0.0) / -2.0;
+    assert!(close(m.sigma_t, expected), "{:?}", m.sigma_t);
+    assert_eq!((m.albedo, m.phase_g), (Vec3::ZERO, 0.0));
+    // The interface belongs to the material of the first primitive: the
+    // medium is inside (behind the outward normals), vacuum outside.
+    let first = s
+        .meshes
+        .iter()
+        .find(|mesh| !mesh.triangles.is_empty())
+        .unwrap()
+        .material;
+    assert_eq!(
+        s.medium_interfaces,
+        vec![(
+            first,
+            candela_scene::MediumInterface {
+                interior: Some(0),
+                exterior: None
+            }
+        )]
+    );
+    // White through 2 units of it turns the attenuation colour.
+    let through = (-m.sigma_t * 2.0).to_array().map(f32::exp);
+    assert!(close(Vec3::from(through), Vec3::new(0.5, 0.25, 1.0)));
+}

@@ -42,6 +42,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_transmission",
     "KHR_materials_ior",
     "KHR_materials_specular",
+    "KHR_materials_volume",
     "KHR_texture_transform",
 ];
 

@@ -8,7 +8,7 @@
 
 use super::accessors::Buffers;
 use super::{cameras, lights, materials, meshes, Ctx};
-use crate::desc::{CameraDesc, InstanceDesc, MaterialDesc, SceneDesc};
+use crate::desc::{CameraDesc, InstanceDesc, MaterialDesc, MediumInterface, SceneDesc};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4};
 use std::collections::HashMap;
@@ -188,6 +188,15 @@ fn material_of(
     }
     let scene = &mut walk.scene;
     scene.materials.push(desc);
-    walk.materials.insert(key, scene.materials.len() - 1);
-    Ok(scene.materials.len() - 1)
+    let index = scene.materials.len() - 1;
+    if let Some(medium) = materials::volume_medium(m) {
+        scene.media.push(medium);
+        let interface = MediumInterface {
+            interior: Some(scene.media.len() - 1),
+            exterior: None,
+        };
+        scene.medium_interfaces.push((index, interface));
+    }
+    walk.materials.insert(key, index);
+    Ok(index)
 }
