@@ -58,7 +58,7 @@ pub enum LightingMode {
 /// Sampler dimensions of one light sample: the light's choice and a point
 /// on it (the choice's own dimension is drawn only when the point's number
 /// cannot also make the choice).
-pub(super) const LIGHT_SAMPLE_DIMENSIONS: u32 = 3;
+const LIGHT_SAMPLE_DIMENSIONS: u32 = 3;
 
 /// Sampler dimensions one [`estimate_direct`] call draws in `scene`: two per
 /// hemisphere ray, [`LIGHT_SAMPLE_DIMENSIONS`] per light sample, none for

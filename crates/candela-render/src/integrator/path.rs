@@ -25,7 +25,7 @@
 use super::direct::{
     bsdf_hit_weight, direct_dimensions, estimate_direct, light_context, LightingMode, SpawnOrigins,
 };
-use super::medium::{medium_direct_dimensions, MediumVertex};
+use super::medium::MediumVertex;
 use super::record::{EmissionEvent, PathEnd, PathRecorder, ScatterEvent};
 use super::{FirstHitAov, ThreadContext};
 use crate::bsdf::Bsdf;
@@ -177,7 +177,9 @@ pub fn path_radiance<R: PathRecorder>(
                         l += term;
                         rec.radiance_term(depth + 1, term);
                     } else {
-                        sampler.skip(medium_direct_dimensions(scene, settings.light_samples));
+                        // A medium point takes light samples in every mode.
+                        let light = LightingMode::Light;
+                        sampler.skip(direct_dimensions(scene, light, settings.light_samples));
                     }
                     // Sampled in proportion to its value: the weight is one.
                     let (wi, phase_pdf) = vertex.phase.sample(vertex.wo, sampler.next_2d());
