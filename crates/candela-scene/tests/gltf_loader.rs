@@ -536,3 +536,50 @@ fn khr_materials_volume_fills_thick_meshes_with_an_absorbing_medium() {
     let through = (-m.sigma_t * 2.0).to_array().map(f32::exp);
     assert!(close(Vec3::from(through), Vec3::new(0.5, 0.25, 1.0)));
 }
+
+#[test]
+fn mirrored_nodes_wind_their_triangles_the_other_way() {
+    // The one-triangle mesh faces +z. Node 1 mirrors x (determinant -1),
+    // node 4 mirrors x and y (determinant +1), node 5 mirrors z: the glTF
+    // specification turns the front face of nodes 1 and 5 round, so every
+    // placed triangle's face normal keeps pointing out of the same side
+    // as the plain node's, mirrored.
+    let text = gltf_text(|d| {
+        d["nodes"][1]["scale"] = json!([-1.0, 1.0, 1.0]);
+        let nodes = d["nodes"].as_array_mut().unwrap();
+        nodes.push(json!({"mesh": 0, "scale": [-1.0, -1.0, 1.0]}));
+        nodes.push(json!({"mesh": 0, "scale": [1.0, 1.0, -1.0]}));
+        d["scenes"][0]["nodes"] = json!([0, 1, 2, 3, 4, 5]);
+    });
+    let l = load_ok(&write("mirrored.gltf", &text));
+    let s = &l.scene;
+    assert!(l.report.warnings.is_empty(), "{}", l.report);
+    assert_eq!(s.instances.len(), 4);
+    let face_normal = |i: usize| {
+        let inst = &s.instances[i];
+        let mesh = &s.meshes[inst.mesh];
+        let [a, b, c] = mesh.triangles[0].map(|k| {
+            inst.world_from_object
+                .transform_point3(mesh.positions[k as usize])
+        });
+        (b - a).cross(c - a).normalize()
+    };
+    // Where the plain triangle's +z normal goes under each placement
+    // (normals transform by the inverse transpose).
+    let expected = [Vec3::Z, Vec3::Z, Vec3::Z, -Vec3::Z];
+    for (i, want) in expected.into_iter().enumerate() {
+        assert!(
+            close(face_normal(i), want),
+            "instance {i}: {:?}",
+            face_normal(i)
+        );
+    }
+    // One wound-the-other-way copy serves both mirroring nodes; the
+    // determinant +1 node uses the mesh as read.
+    let mesh_of = |i: usize| s.instances[i].mesh;
+    assert_eq!(mesh_of(0), mesh_of(2));
+    assert_eq!(mesh_of(1), mesh_of(3));
+    assert_ne!(mesh_of(0), mesh_of(1));
+    assert_eq!(s.meshes.len(), 2);
+    assert_eq!(s.meshes[mesh_of(1)].material, s.meshes[mesh_of(0)].material);
+}

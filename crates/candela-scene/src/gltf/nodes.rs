@@ -3,12 +3,16 @@
 //! its parent's. A glTF mesh used by several nodes is read once (one
 //! [`crate::MeshDesc`] per primitive) and placed by one
 //! [`crate::InstanceDesc`] per node; cameras and lights take their node's
-//! world transform. glTF is Y-up, right-handed, in metres, like Candela's
-//! world: no axis change.
+//! world transform. A node whose transform mirrors (negative determinant)
+//! turns its triangles' front faces round, as the glTF specification says:
+//! it is placed with a copy of the mesh wound the other way, so that the
+//! face normal still points out of the object (which side is glass or
+//! medium, and which side a lamp lights, follows the face normal). glTF is
+//! Y-up, right-handed, in metres, like Candela's world: no axis change.
 
 use super::accessors::Buffers;
 use super::{cameras, lights, materials, meshes, Ctx};
-use crate::desc::{CameraDesc, InstanceDesc, MaterialDesc, MediumInterface, SceneDesc};
+use crate::desc::{CameraDesc, InstanceDesc, MaterialDesc, MediumInterface, MeshDesc, SceneDesc};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4};
 use std::collections::HashMap;
@@ -19,9 +23,9 @@ const MAX_DEPTH: usize = 256;
 /// What the walk has built so far.
 struct Walk<'d> {
     scene: SceneDesc,
-    /// Scene mesh index per (glTF mesh, primitive); `None` for a primitive
-    /// that draws nothing.
-    meshes: HashMap<(usize, usize), Option<usize>>,
+    /// Scene mesh index per (glTF mesh, primitive, mirrored); `None` for a
+    /// primitive that draws nothing.
+    meshes: HashMap<(usize, usize, bool), Option<usize>>,
     /// Scene material index per glTF material (`None`: the default
     /// grey) and whether it is drawn on vertex colours.
     materials: HashMap<(Option<usize>, bool), usize>,
@@ -118,7 +122,7 @@ fn visit(ctx: &Ctx, walk: &mut Walk, node: &gltf::Node, m: Mat4) -> Result<(), L
             )?;
         } else {
             for prim in mesh.primitives() {
-                let Some(index) = mesh_of(ctx, walk, &mesh, &prim)? else {
+                let Some(index) = mesh_of(ctx, walk, &mesh, &prim, det < 0.0)? else {
                     continue;
                 };
                 walk.scene.instances.push(InstanceDesc {
@@ -141,27 +145,52 @@ fn visit(ctx: &Ctx, walk: &mut Walk, node: &gltf::Node, m: Mat4) -> Result<(), L
     Ok(())
 }
 
-/// The scene mesh of primitive `prim`, read on its first use.
+/// The scene mesh of primitive `prim`, read on its first use; for a
+/// `mirrored` node, a copy of it wound the other way, made on its first use.
 fn mesh_of(
     ctx: &Ctx,
     walk: &mut Walk,
     mesh: &gltf::Mesh,
     prim: &gltf::Primitive,
+    mirrored: bool,
 ) -> Result<Option<usize>, LoadError> {
-    let key = (mesh.index(), prim.index());
+    let key = (mesh.index(), prim.index(), mirrored);
     if let Some(&known) = walk.meshes.get(&key) {
         return Ok(known);
     }
-    let index = match meshes::read_primitive(ctx, walk.buffers, mesh, prim)? {
-        Some(mut desc) => {
-            desc.material = material_of(ctx, walk, &prim.material(), !desc.colors.is_empty())?;
+    let index = if mirrored {
+        mesh_of(ctx, walk, mesh, prim, false)?.map(|plain| {
+            let mut desc = walk.scene.meshes[plain].clone();
+            wind_the_other_way(&mut desc);
             walk.scene.meshes.push(desc);
-            Some(walk.scene.meshes.len() - 1)
+            walk.scene.meshes.len() - 1
+        })
+    } else {
+        match meshes::read_primitive(ctx, walk.buffers, mesh, prim)? {
+            Some(mut desc) => {
+                desc.material = material_of(ctx, walk, &prim.material(), !desc.colors.is_empty())?;
+                walk.scene.meshes.push(desc);
+                Some(walk.scene.meshes.len() - 1)
+            }
+            None => None,
         }
-        None => None,
     };
     walk.meshes.insert(key, index);
     Ok(index)
+}
+
+/// Swaps the second and third corner of every triangle (and of its normal
+/// and uv indices, which name the same corners).
+fn wind_the_other_way(desc: &mut MeshDesc) {
+    for corners in [
+        &mut desc.triangles,
+        &mut desc.normal_indices,
+        &mut desc.uv_indices,
+    ] {
+        for t in corners.iter_mut() {
+            t.swap(1, 2);
+        }
+    }
 }
 
 /// The scene material of `m`, read on its first use; a primitive without a
