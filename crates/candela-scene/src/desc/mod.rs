@@ -24,6 +24,7 @@ mod perturbation;
 mod smooth_normals;
 mod tangents;
 mod texture;
+mod winding;
 
 pub use camera::{CameraDesc, ClipRange, Projection};
 pub use extent::MAX_COORDINATE;

@@ -12,7 +12,7 @@
 
 use super::accessors::Buffers;
 use super::{cameras, lights, materials, meshes, Ctx};
-use crate::desc::{CameraDesc, InstanceDesc, MaterialDesc, MediumInterface, MeshDesc, SceneDesc};
+use crate::desc::{CameraDesc, InstanceDesc, MaterialDesc, MediumInterface, SceneDesc};
 use crate::error::{ErrorKind, LoadError};
 use glam::{Mat3, Mat4};
 use std::collections::HashMap;
@@ -161,7 +161,7 @@ fn mesh_of(
     let index = if mirrored {
         mesh_of(ctx, walk, mesh, prim, false)?.map(|plain| {
             let mut desc = walk.scene.meshes[plain].clone();
-            wind_the_other_way(&mut desc);
+            desc.reverse_winding();
             walk.scene.meshes.push(desc);
             walk.scene.meshes.len() - 1
         })
@@ -177,20 +177,6 @@ fn mesh_of(
     };
     walk.meshes.insert(key, index);
     Ok(index)
-}
-
-/// Swaps the second and third corner of every triangle (and of its normal
-/// and uv indices, which name the same corners).
-fn wind_the_other_way(desc: &mut MeshDesc) {
-    for corners in [
-        &mut desc.triangles,
-        &mut desc.normal_indices,
-        &mut desc.uv_indices,
-    ] {
-        for t in corners.iter_mut() {
-            t.swap(1, 2);
-        }
-    }
 }
 
 /// The scene material of `m`, read on its first use; a primitive without a

@@ -141,14 +141,7 @@ pub(super) fn disk(name: String, loc: SourceLoc) -> MeshDesc {
 
 /// Turns the mesh inside out: reversed winding, negated normals.
 pub(super) fn flip(mesh: &mut MeshDesc) {
-    for t in mesh
-        .triangles
-        .iter_mut()
-        .chain(mesh.normal_indices.iter_mut())
-        .chain(mesh.uv_indices.iter_mut())
-    {
-        t.swap(1, 2);
-    }
+    mesh.reverse_winding();
     for n in &mut mesh.normals {
         *n = -*n;
     }
