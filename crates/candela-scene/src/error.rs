@@ -115,11 +115,69 @@ impl LoadError {
         if !self.element.is_empty() {
             s.push_str(&format!(": {}", self.element));
         }
-        // Messages never span lines: the error is meant for one line of a log.
-        let message = self.message.replace(['\n', '\r'], " ");
-        s.push_str(&format!(": {message}"));
-        s
+        s.push_str(&format!(": {}", clip_quoted(&self.message)));
+        printable(&s)
     }
+}
+
+/// At most [`TOKEN_CHARS`] characters of `s`, then `...`: how much of a
+/// token from the file a message quotes, so a binary body read as text
+/// shows as a recognisable start, not a screenful.
+pub(crate) fn clip(s: &str) -> String {
+    clip_to(s, TOKEN_CHARS)
+}
+
+/// Characters of a quoted token a message keeps.
+const TOKEN_CHARS: usize = 32;
+
+/// Characters any quoted text keeps in the printed line: enough for a long
+/// path, short enough to keep the error one readable line whatever a
+/// loader quoted.
+const QUOTED_CHARS: usize = 160;
+
+fn clip_to(s: &str, n: usize) -> String {
+    let mut t: String = s.chars().take(n).collect();
+    if t.len() < s.len() {
+        t.push_str("...");
+    }
+    t
+}
+
+/// `message` with the text between each pair of double quotes clipped to
+/// [`QUOTED_CHARS`]: every loader quotes the file's text this way, and
+/// this is the one place all their messages pass.
+fn clip_quoted(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(1024));
+    let mut rest = message;
+    while let Some(open) = rest.find('"') {
+        out.push_str(&rest[..=open]);
+        rest = &rest[open + 1..];
+        match rest.find('"') {
+            Some(close) => {
+                out.push_str(&clip_to(&rest[..close], QUOTED_CHARS));
+                out.push('"');
+                rest = &rest[close + 1..];
+            }
+            None => break,
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The line with line breaks as spaces (an error is one line of a log) and
+/// other control characters escaped (`\u{1b}`), so bytes from a corrupt
+/// file cannot reach the reader's terminal as escapes.
+fn printable(line: &str) -> String {
+    let mut out = String::with_capacity(line.len());
+    for c in line.chars() {
+        match c {
+            '\n' | '\r' | '\t' => out.push(' '),
+            c if c.is_control() => out.extend(c.escape_unicode()),
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 impl fmt::Display for ErrorKind {

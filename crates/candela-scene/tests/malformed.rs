@@ -328,3 +328,56 @@ fn unsupported_features_warn_once_or_fail_in_strict_mode() {
     .unwrap_err();
     assert_eq!(err.kind, ErrorKind::Unsupported, "{err}");
 }
+
+/// The error line for `bytes` loaded as `name`, which must fail.
+fn error_line(name: &str, bytes: &[u8]) -> String {
+    let file = candela_testkit::TempFile::new("malformed", name, bytes);
+    let line = load(&file, &LoadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(line.starts_with(&file.display().to_string()), "{line}");
+    line
+}
+
+#[test]
+fn a_binary_body_read_as_text_is_quoted_short_and_printable() {
+    // Found by the mutation sweep: a binary PLY whose header says "ascii"
+    // quoted its whole body, NUL bytes and all, as the bad number.
+    let mut ply = b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n\
+property float y\nproperty float z\nend_header\n"
+        .to_vec();
+    ply.extend((0..2000u32).map(|i| [0u8, 0x1b, 0xbf, 0x3f][i as usize % 4]));
+    let line = error_line("body.ply", &ply);
+    assert!(!line.chars().any(char::is_control), "{line:?}");
+    assert!(
+        line.contains("...\" is not a number") && line.len() < 400,
+        "{line}"
+    );
+}
+
+#[test]
+fn control_characters_from_the_file_are_escaped() {
+    // Found by the mutation sweep: a flipped byte reached the message raw
+    // through the XML parser's and the PLY header's messages.
+    for (name, bytes) in [
+        ("flip.dae", &b"<COLLADA><asset\x1f/></COLLADA>"[..]),
+        (
+            "flip.ply",
+            b"ply\nformat ascii 1.0\n\x06omment\nend_header\n",
+        ),
+    ] {
+        let line = error_line(name, bytes);
+        assert!(!line.chars().any(char::is_control), "{line:?}");
+        assert!(line.contains("\\u{"), "{line}");
+    }
+}
+
+#[test]
+fn a_value_beyond_single_precision_is_printed_short() {
+    // Found by the mutation sweep: 1e300 in an ASCII PLY was printed with
+    // all its 301 digits.
+    let ply = b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n\
+property float y\nproperty float z\nend_header\n0 1e300 0\n";
+    let line = error_line("far.ply", ply);
+    assert!(line.ends_with("y is 1e300"), "{line}");
+}

@@ -1,7 +1,15 @@
 //! Helpers shared by every crate's tests, written once: a temporary folder
 //! that cleans up after itself, a small seeded generator for statistical
-//! tests, and the way to the shared scene corpus beside the repository.
+//! tests, the way to the shared scene corpus beside the repository, and
+//! the pieces of bad-input sweeps (seeded mutations, a panic and hang
+//! guard, an allocator that refuses absurd requests).
 #![warn(missing_docs)]
+
+pub mod capped_alloc;
+pub mod glb;
+pub mod guard;
+pub mod mutate;
+pub mod scene_mutants;
 
 use glam::Vec3;
 use std::path::{Path, PathBuf};

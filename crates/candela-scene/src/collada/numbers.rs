@@ -6,7 +6,7 @@
 //! length of the text, so a hostile count cannot exhaust memory.
 
 use super::xml::{text, Ctx, XNode};
-use crate::error::{ErrorKind, LoadError};
+use crate::error::{clip, ErrorKind, LoadError};
 use glam::Vec3;
 
 /// Largest array the loader accepts. A number takes at least two bytes of text
@@ -151,13 +151,4 @@ pub(crate) fn count_mismatch(ctx: &Ctx, node: XNode, c: usize, found: usize) -> 
         ErrorKind::CountMismatch,
         format!("count=\"{c}\" but {found} numbers"),
     )
-}
-
-/// Keeps quoted input short in messages.
-fn clip(s: &str) -> String {
-    let mut t: String = s.chars().take(32).collect();
-    if t.len() < s.len() {
-        t.push_str("...");
-    }
-    t
 }

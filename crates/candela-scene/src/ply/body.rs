@@ -4,7 +4,7 @@
 
 use super::header::{Encoding, Scalar};
 use crate::desc::SourceLoc;
-use crate::error::ErrorKind;
+use crate::error::{clip, ErrorKind};
 
 /// A cursor over the body.
 pub(crate) struct Body<'a> {
@@ -118,7 +118,7 @@ impl<'a> Body<'a> {
         let loc = self.loc_of(start);
         let bad = |what: &str| ReadError {
             kind: ErrorKind::BadNumber,
-            message: format!("\"{token}\" is not {what}"),
+            message: format!("\"{}\" is not {what}", clip(&token)),
             loc: Some(loc),
         };
         if ty.is_integer() {

@@ -5,7 +5,7 @@
 
 use super::located;
 use crate::desc::SourceLoc;
-use crate::error::{ErrorKind, LoadError};
+use crate::error::{clip, ErrorKind, LoadError};
 use std::path::Path;
 
 /// Longest header accepted: real headers are a few hundred bytes.
@@ -214,7 +214,7 @@ pub(crate) fn parse(bytes: &[u8], file: &Path) -> Result<Header, LoadError> {
                             col_of(1),
                             "format",
                             ErrorKind::BadValue,
-                            format!("unknown encoding {:?}", other.unwrap_or("")),
+                            format!("unknown encoding \"{}\"", clip(other.unwrap_or(""))),
                         ))
                     }
                 });
@@ -244,7 +244,7 @@ pub(crate) fn parse(bytes: &[u8], file: &Path) -> Result<Header, LoadError> {
                         col_of(2),
                         "element",
                         ErrorKind::BadNumber,
-                        format!("\"{count}\" is not a count"),
+                        format!("\"{}\" is not a count", clip(count)),
                     )
                 })?;
                 elements.push(Element {
@@ -272,7 +272,7 @@ pub(crate) fn parse(bytes: &[u8], file: &Path) -> Result<Header, LoadError> {
                             col_of(i),
                             "property",
                             ErrorKind::BadValue,
-                            format!("unknown type \"{name}\""),
+                            format!("unknown type \"{}\"", clip(name)),
                         )
                     })
                 };
@@ -332,9 +332,9 @@ pub(crate) fn parse(bytes: &[u8], file: &Path) -> Result<Header, LoadError> {
                 return Err(err(
                     line_no,
                     1,
-                    other,
+                    &clip(other),
                     ErrorKind::BadValue,
-                    format!("unknown header line \"{other}\""),
+                    format!("unknown header line \"{}\"", clip(other)),
                 ))
             }
         }

@@ -113,7 +113,7 @@ pub(crate) fn read(
                         return Err(fail(
                             body.error(
                                 ErrorKind::NonFinite,
-                                format!("{} is {}", VERTEX_FIELDS[k][0], values[k]),
+                                format!("{} is {:?}", VERTEX_FIELDS[k][0], values[k]),
                             ),
                             i,
                         ));
