@@ -10,7 +10,7 @@
 use candela_render::scene::{Scene, SceneOptions};
 use candela_scene::{load, LoadOptions};
 use candela_testkit::capped_alloc::CappedAlloc;
-use candela_testkit::guard::{guarded, Outcome};
+use candela_testkit::guard::{assert_all_behaved, guarded, Outcome};
 use candela_testkit::scene_mutants::scene_mutants;
 use candela_testkit::TempDir;
 use std::time::{Duration, Instant};
@@ -70,16 +70,6 @@ fn every_mutant_that_loads_builds_or_fails_with_one_line() {
         }
     }
     CappedAlloc::label("");
-    eprintln!(
-        "{} mutants: {built} loaded and built, {refused} loaded and refused, in {:.2?}",
-        mutants.len(),
-        start.elapsed()
-    );
-    assert!(
-        failures.is_empty(),
-        "{} of {} mutants misbehaved:\n{}",
-        failures.len(),
-        mutants.len(),
-        failures.join("\n")
-    );
+    let summary = format!("{built} loaded and built, {refused} loaded and refused");
+    assert_all_behaved(mutants.len(), &failures, start, &summary);
 }

@@ -9,7 +9,7 @@
 
 use candela_scene::{load, LoadError, LoadOptions};
 use candela_testkit::capped_alloc::CappedAlloc;
-use candela_testkit::guard::{guarded, Outcome};
+use candela_testkit::guard::{assert_all_behaved, guarded, Outcome};
 use candela_testkit::scene_mutants::{scene_mutants, SceneMutant};
 use candela_testkit::TempDir;
 use std::path::PathBuf;
@@ -92,17 +92,11 @@ fn sweep(strict: bool) {
         }
     }
     CappedAlloc::label("");
-    eprintln!(
-        "{} mutants (strict: {strict}) in {:.2?}",
+    assert_all_behaved(
         mutants.len(),
-        start.elapsed()
-    );
-    assert!(
-        failures.is_empty(),
-        "{} of {} mutants misbehaved:\n{}",
-        failures.len(),
-        mutants.len(),
-        failures.join("\n")
+        &failures,
+        start,
+        &format!("strict: {strict}"),
     );
 }
 

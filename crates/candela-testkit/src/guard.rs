@@ -49,3 +49,17 @@ fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
         "a panic without a message".into()
     }
 }
+
+/// The end of a sweep over `total` untrusted inputs: prints how long it
+/// took and `summary`, then fails naming every input in `failures` (one
+/// line each, the input first), so a sweep reports all its misbehaving
+/// inputs at once rather than the first.
+pub fn assert_all_behaved(total: usize, failures: &[String], started: Instant, summary: &str) {
+    eprintln!("{total} inputs ({summary}) in {:.2?}", started.elapsed());
+    assert!(
+        failures.is_empty(),
+        "{} of {total} inputs misbehaved:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
