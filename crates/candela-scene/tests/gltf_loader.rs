@@ -1,6 +1,7 @@
 //! glTF loading: the Khronos sample files, instancing, cameras, light units,
 //! materials, `.glb` against `.gltf`.
 
+#[allow(dead_code)]
 mod gltf;
 
 use candela_scene::{

@@ -2,6 +2,7 @@
 //! one-line message naming the file and where; random mutations of a valid
 //! `.glb` and `.gltf` never panic.
 
+#[allow(dead_code)]
 mod gltf;
 
 use candela_scene::{load, ErrorKind, LoadError, LoadOptions};

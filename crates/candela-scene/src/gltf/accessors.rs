@@ -3,6 +3,12 @@
 //! offset that does not fit is an [`ErrorKind::IndexOutOfRange`] error, so
 //! a file claiming ten billion elements allocates nothing. Sparse accessors
 //! are applied over their base values (or zeros).
+//!
+//! Each attribute names the component types it may be stored as
+//! ([`Storage`]): the core spec's, widened by `KHR_mesh_quantization` to
+//! 8- and 16-bit integers for positions, normals, tangents and texture
+//! coordinates. Every element is decoded by [`component`], the one place
+//! that knows the component types and the normalised flag.
 
 use super::Ctx;
 use crate::error::{ErrorKind, LoadError};
@@ -93,15 +99,113 @@ fn strided<'b>(
     }
 }
 
-/// Reads accessor `acc` element by element with `decode`, after checking its
-/// shape is `dims` and its component type one of `types`.
+/// The component types an attribute may be stored as: `plain` as stored
+/// (floats, and integers read as their value), `normalized` as integers
+/// with the accessor's `normalized` flag set.
+pub(super) struct Storage {
+    /// The attribute's name in messages (`NORMAL`).
+    name: &'static str,
+    /// Types read as stored.
+    plain: &'static [DataType],
+    /// Integer types read normalised.
+    normalized: &'static [DataType],
+}
+
+const FLOAT: &[DataType] = &[DataType::F32];
+const SMALL_INTS: &[DataType] = &[DataType::I8, DataType::U8, DataType::I16, DataType::U16];
+const FLOAT_AND_SMALL_INTS: &[DataType] = &[
+    DataType::F32,
+    DataType::I8,
+    DataType::U8,
+    DataType::I16,
+    DataType::U16,
+];
+
+/// `KHR_mesh_quantization`: float, or any 8/16-bit integer, normalised or not
+/// (the node transform carries the dequantisation).
+pub(super) const POSITION: Storage = Storage {
+    name: "POSITION",
+    plain: FLOAT_AND_SMALL_INTS,
+    normalized: SMALL_INTS,
+};
+
+/// `KHR_mesh_quantization`: float or normalised signed 8/16-bit.
+pub(super) const NORMAL: Storage = Storage {
+    name: "NORMAL",
+    plain: FLOAT,
+    normalized: &[DataType::I8, DataType::I16],
+};
+
+/// As [`NORMAL`].
+pub(super) const TANGENT: Storage = Storage {
+    name: "TANGENT",
+    ..NORMAL
+};
+
+/// `KHR_mesh_quantization`: float, or any 8/16-bit integer, normalised or not
+/// (`KHR_texture_transform` usually carries the dequantisation).
+pub(super) const TEXCOORD: Storage = Storage {
+    name: "TEXCOORD_0",
+    ..POSITION
+};
+
+/// The core spec: float or normalised unsigned 8/16-bit.
+pub(super) const COLOR: Storage = Storage {
+    name: "COLOR_0",
+    plain: FLOAT,
+    normalized: &[DataType::U8, DataType::U16],
+};
+
+/// Unsigned integers read as stored.
+const INDICES: Storage = Storage {
+    name: "indices",
+    plain: &[DataType::U8, DataType::U16, DataType::U32],
+    normalized: &[],
+};
+
+/// The glTF name of a component type, for messages.
+fn type_name(ty: DataType) -> &'static str {
+    match ty {
+        DataType::I8 => "BYTE",
+        DataType::U8 => "UNSIGNED_BYTE",
+        DataType::I16 => "SHORT",
+        DataType::U16 => "UNSIGNED_SHORT",
+        DataType::U32 => "UNSIGNED_INT",
+        DataType::F32 => "FLOAT",
+    }
+}
+
+impl Storage {
+    /// Whether `ty` (normalised or not) is allowed. The flag means nothing
+    /// for floats, so it is not held against them.
+    fn allows(&self, ty: DataType, normalized: bool) -> bool {
+        match normalized && ty != DataType::F32 {
+            true => self.normalized.contains(&ty),
+            false => self.plain.contains(&ty),
+        }
+    }
+
+    /// The allowed types, as in a message: `FLOAT, normalized BYTE`.
+    fn allowed(&self) -> String {
+        let plain = self.plain.iter().map(|&t| type_name(t).to_string());
+        let normalized = self
+            .normalized
+            .iter()
+            .map(|&t| format!("normalized {}", type_name(t)));
+        plain.chain(normalized).collect::<Vec<_>>().join(", ")
+    }
+}
+
+/// Reads accessor `acc` element by element with `decode` (given the element
+/// bytes, component type and normalised flag), after checking its shape is
+/// `dims` and its storage one that `storage` allows.
 fn read<T: Copy + Default>(
     ctx: &Ctx,
     buffers: &Buffers,
     acc: &gltf::Accessor,
     dims: Dimensions,
-    types: &[DataType],
-    decode: impl Fn(&[u8], DataType) -> T,
+    storage: &Storage,
+    decode: impl Fn(&[u8], DataType, bool) -> T,
 ) -> Result<Vec<T>, LoadError> {
     let at = format!("/accessors/{}", acc.index());
     if acc.dimensions() != dims {
@@ -111,12 +215,20 @@ fn read<T: Copy + Default>(
             format!("type {:?} where {dims:?} is needed", acc.dimensions()),
         ));
     }
-    let ty = acc.data_type();
-    if !types.contains(&ty) {
+    let (ty, normalized) = (acc.data_type(), acc.normalized());
+    if !storage.allows(ty, normalized) {
+        let stored = match normalized {
+            true => format!("normalized {}", type_name(ty)),
+            false => type_name(ty).to_string(),
+        };
         return Err(ctx.err(
             format!("{at}/componentType"),
             ErrorKind::BadValue,
-            format!("component type {ty:?} not allowed here (expected one of {types:?})"),
+            format!(
+                "{} cannot be {stored} (allowed: {})",
+                storage.name,
+                storage.allowed()
+            ),
         ));
     }
     let count = acc.count();
@@ -131,13 +243,15 @@ fn read<T: Copy + Default>(
     let mut out = match acc.view() {
         Some(view) => {
             let s = strided(ctx, buffers, &view, acc.offset(), count, elem, &at)?;
-            (0..count).map(|i| decode(s.get(i), ty)).collect()
+            (0..count)
+                .map(|i| decode(s.get(i), ty, normalized))
+                .collect()
         }
         None => vec![T::default(); count],
     };
     if let Some(sparse) = acc.sparse() {
         apply_sparse(ctx, buffers, &sparse, &at, elem, &mut out, |b| {
-            decode(b, ty)
+            decode(b, ty, normalized)
         })?;
     }
     Ok(out)
@@ -194,72 +308,65 @@ fn uint(b: &[u8]) -> u32 {
     }
 }
 
-/// Component `i` of an element as a float: floats as stored, integers as
-/// normalised values (the only integer kinds the read attributes allow).
-fn component(b: &[u8], ty: DataType, i: usize) -> f32 {
-    match ty {
-        DataType::F32 => {
-            let c = &b[4 * i..4 * i + 4];
-            f32::from_le_bytes([c[0], c[1], c[2], c[3]])
-        }
-        DataType::U8 => b[i] as f32 / 255.0,
-        DataType::U16 => u16::from_le_bytes([b[2 * i], b[2 * i + 1]]) as f32 / 65535.0,
-        // Signed normalised: max(c / (2^(n-1) - 1), -1) per the glTF spec.
-        DataType::I8 => (b[i] as i8 as f32 / 127.0).max(-1.0),
-        DataType::I16 => (i16::from_le_bytes([b[2 * i], b[2 * i + 1]]) as f32 / 32767.0).max(-1.0),
-        DataType::U32 => {
-            u32::from_le_bytes([b[4 * i], b[4 * i + 1], b[4 * i + 2], b[4 * i + 3]]) as f32
-        }
+/// Component `i` of an element as a float: floats as stored, integers
+/// normalised as the glTF spec says (unsigned `c / (2^n - 1)`, signed
+/// `max(c / (2^(n-1) - 1), -1)`) or, without the flag, as their value.
+fn component(b: &[u8], ty: DataType, normalized: bool, i: usize) -> f32 {
+    let bytes = |n: usize| &b[n * i..n * i + n];
+    let two = |c: &[u8]| [c[0], c[1]];
+    let four = |c: &[u8]| [c[0], c[1], c[2], c[3]];
+    let (value, max) = match ty {
+        DataType::F32 => return f32::from_le_bytes(four(bytes(4))),
+        DataType::U8 => (bytes(1)[0] as f32, u8::MAX as f32),
+        DataType::I8 => (bytes(1)[0] as i8 as f32, i8::MAX as f32),
+        DataType::U16 => (u16::from_le_bytes(two(bytes(2))) as f32, u16::MAX as f32),
+        DataType::I16 => (i16::from_le_bytes(two(bytes(2))) as f32, i16::MAX as f32),
+        DataType::U32 => (u32::from_le_bytes(four(bytes(4))) as f32, u32::MAX as f32),
+    };
+    match normalized {
+        true => (value / max).max(-1.0),
+        false => value,
     }
 }
 
-/// A `VEC3` float attribute (POSITION, NORMAL).
+/// The first `N` components of an element as floats.
+fn floats<const N: usize>(b: &[u8], ty: DataType, normalized: bool) -> [f32; N] {
+    std::array::from_fn(|k| component(b, ty, normalized, k))
+}
+
+/// A `VEC3` attribute (POSITION, NORMAL) stored as `storage` allows.
 pub(super) fn vec3(
     ctx: &Ctx,
     buffers: &Buffers,
     acc: &gltf::Accessor,
+    storage: &Storage,
 ) -> Result<Vec<glam::Vec3>, LoadError> {
-    read(
-        ctx,
-        buffers,
-        acc,
-        Dimensions::Vec3,
-        &[DataType::F32],
-        |b, ty| {
-            glam::Vec3::new(
-                component(b, ty, 0),
-                component(b, ty, 1),
-                component(b, ty, 2),
-            )
-        },
-    )
+    read(ctx, buffers, acc, Dimensions::Vec3, storage, |b, ty, n| {
+        glam::Vec3::from_array(floats(b, ty, n))
+    })
 }
 
-/// A `VEC4` float attribute (TANGENT).
+/// A `VEC4` attribute (TANGENT) stored as `storage` allows.
 pub(super) fn vec4(
     ctx: &Ctx,
     buffers: &Buffers,
     acc: &gltf::Accessor,
+    storage: &Storage,
 ) -> Result<Vec<glam::Vec4>, LoadError> {
-    read(
-        ctx,
-        buffers,
-        acc,
-        Dimensions::Vec4,
-        &[DataType::F32],
-        |b, ty| glam::Vec4::from_array([0, 1, 2, 3].map(|k| component(b, ty, k))),
-    )
+    read(ctx, buffers, acc, Dimensions::Vec4, storage, |b, ty, n| {
+        glam::Vec4::from_array(floats(b, ty, n))
+    })
 }
 
-/// A `VEC2` texture-coordinate attribute: float or normalised 8/16-bit.
+/// A `VEC2` attribute (TEXCOORD_0) stored as `storage` allows.
 pub(super) fn vec2(
     ctx: &Ctx,
     buffers: &Buffers,
     acc: &gltf::Accessor,
+    storage: &Storage,
 ) -> Result<Vec<glam::Vec2>, LoadError> {
-    let types = [DataType::F32, DataType::U8, DataType::U16];
-    read(ctx, buffers, acc, Dimensions::Vec2, &types, |b, ty| {
-        glam::Vec2::new(component(b, ty, 0), component(b, ty, 1))
+    read(ctx, buffers, acc, Dimensions::Vec2, storage, |b, ty, n| {
+        glam::Vec2::from_array(floats(b, ty, n))
     })
 }
 
@@ -270,14 +377,16 @@ pub(super) fn colors(
     buffers: &Buffers,
     acc: &gltf::Accessor,
 ) -> Result<Vec<glam::Vec4>, LoadError> {
-    let types = [DataType::F32, DataType::U8, DataType::U16];
     let dims = match acc.dimensions() {
         Dimensions::Vec3 => Dimensions::Vec3,
         _ => Dimensions::Vec4,
     };
     let n = dims.multiplicity();
-    read(ctx, buffers, acc, dims, &types, |b, ty| {
-        glam::Vec4::from_array([0, 1, 2, 3].map(|k| if k < n { component(b, ty, k) } else { 1.0 }))
+    read(ctx, buffers, acc, dims, &COLOR, |b, ty, norm| {
+        glam::Vec4::from_array([0, 1, 2, 3].map(|k| match k < n {
+            true => component(b, ty, norm, k),
+            false => 1.0,
+        }))
     })
 }
 
@@ -287,8 +396,12 @@ pub(super) fn indices(
     buffers: &Buffers,
     acc: &gltf::Accessor,
 ) -> Result<Vec<u32>, LoadError> {
-    let types = [DataType::U8, DataType::U16, DataType::U32];
-    read(ctx, buffers, acc, Dimensions::Scalar, &types, |b, _| {
-        uint(b)
-    })
+    read(
+        ctx,
+        buffers,
+        acc,
+        Dimensions::Scalar,
+        &INDICES,
+        |b, _, _| uint(b),
+    )
 }

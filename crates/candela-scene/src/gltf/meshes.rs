@@ -38,7 +38,7 @@ pub(super) fn read_primitive(
             "primitive has no POSITION attribute".into(),
         ));
     };
-    let positions = accessors::vec3(ctx, buffers, &pos_acc)?;
+    let positions = accessors::vec3(ctx, buffers, &pos_acc, &accessors::POSITION)?;
     if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
         return Err(ctx.err(
             format!("/accessors/{}", pos_acc.index()),
@@ -82,8 +82,9 @@ pub(super) fn read_primitive(
         ..MeshDesc::default()
     };
     if let Some(acc) = attribute(&Semantic::Normals)? {
-        let normals = accessors::vec3(ctx, buffers, &acc)?;
-        // Unit length per the spec; exporters round, and a zero normal
+        let normals = accessors::vec3(ctx, buffers, &acc, &accessors::NORMAL)?;
+        // Unit length per the spec; exporters round, quantised normals
+        // (`KHR_mesh_quantization`) must be renormalised, and a zero normal
         // falls back to the face's own.
         desc.normals = normals
             .into_iter()
@@ -94,7 +95,7 @@ pub(super) fn read_primitive(
     if let Some(acc) = attribute(&Semantic::TexCoords(0))? {
         // glTF's UV origin is the image's top-left corner (v runs down);
         // Candela's v runs bottom to top (OpenGL's, COLLADA's, OBJ's).
-        desc.uvs = accessors::vec2(ctx, buffers, &acc)?
+        desc.uvs = accessors::vec2(ctx, buffers, &acc, &accessors::TEXCOORD)?
             .into_iter()
             .map(|uv| glam::Vec2::new(uv.x, 1.0 - uv.y))
             .collect();
@@ -168,7 +169,8 @@ fn vertex_colors(
     Ok(rgba.into_iter().map(glam::Vec4::truncate).collect())
 }
 
-/// A `TANGENT` accessor: xyz normalised (exporters round), w the
+/// A `TANGENT` accessor: xyz normalised (exporters round; quantised
+/// tangents must be renormalised), w the
 /// handedness sign. A zero or non-finite tangent becomes zero, which the
 /// renderer reads as "no tangent here" (it falls back to the UVs' frame).
 fn tangents(
@@ -176,7 +178,7 @@ fn tangents(
     buffers: &Buffers,
     acc: &gltf::Accessor,
 ) -> Result<Vec<glam::Vec4>, LoadError> {
-    Ok(accessors::vec4(ctx, buffers, acc)?
+    Ok(accessors::vec4(ctx, buffers, acc, &accessors::TANGENT)?
         .into_iter()
         .map(|t| match t.truncate().try_normalize() {
             Some(xyz) if t.w.is_finite() => xyz.extend(if t.w < 0.0 { -1.0 } else { 1.0 }),

@@ -4,7 +4,8 @@
 //! Stages: read the file (size guard), split a `.glb` into its chunks
 //! (`glb`, lengths checked, nothing copied), parse and validate the JSON
 //! with the `gltf` crate (its validation refuses dangling indices and
-//! `extensionsRequired` it does not support), name every unsupported
+//! `extensionsRequired` it does not support, once the extensions this loader
+//! reads itself are taken off that list), name every unsupported
 //! extension and feature once, load the buffers (`buffers`), then walk the
 //! default scene (`nodes`) into meshes (`meshes`, reading accessors through
 //! the bounds-checked `accessors`), materials (`materials`, `textures`),
@@ -34,10 +35,11 @@ use crate::{LoadOptions, Loaded, RenderHints};
 use std::cell::RefCell;
 use std::path::Path;
 
-/// Extensions the loader reads (the `gltf` crate refuses any other that a
-/// file lists as required).
+/// Extensions the loader reads; a file may require any of them (any other
+/// required extension is refused).
 const READ_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
+    "KHR_mesh_quantization",
     "KHR_materials_emissive_strength",
     "KHR_materials_transmission",
     "KHR_materials_ior",
@@ -110,7 +112,7 @@ pub(crate) fn load_bytes(
     } else {
         (bytes, None)
     };
-    let root: gltf::json::Root =
+    let mut root: gltf::json::Root =
         gltf::json::deserialize::from_slice(json).map_err(|e| LoadError {
             loc: (e.line() > 0).then(|| SourceLoc {
                 line: e.line() as u32,
@@ -124,6 +126,7 @@ pub(crate) fn load_bytes(
         })?;
     check_position_indices(&ctx, &root)?;
     check_image_sources(&ctx, &root)?;
+    accept_read_requirements(&mut root);
     let doc = gltf::Document::from_json(root).map_err(|e| validation_error(&ctx, e))?;
     report_unsupported(&ctx, &doc)?;
     let buffers = buffers::read_all(&ctx, &doc, bin)?;
@@ -162,6 +165,16 @@ fn check_position_indices(ctx: &Ctx, root: &gltf::json::Root) -> Result<(), Load
         }
     }
     Ok(())
+}
+
+/// Drops from `extensionsRequired` the extensions this loader reads, for
+/// the `gltf` crate's validation refuses every required extension outside
+/// its own list, which misses some the loader reads (`KHR_mesh_quantization`,
+/// whose reading is the accessor reader's work, `accessors`). Whatever is
+/// left is refused there.
+fn accept_read_requirements(root: &mut gltf::json::Root) {
+    root.extensions_required
+        .retain(|ext| !READ_EXTENSIONS.contains(&ext.as_str()));
 }
 
 /// Refuses an image without a source before the `gltf` crate reads it:

@@ -81,3 +81,33 @@ pub fn glb() -> Vec<u8> {
 pub fn write(name: &str, bytes: &[u8]) -> candela_testkit::TempFile {
     candela_testkit::TempFile::new("gltf-tests", name, bytes)
 }
+
+/// Appends `bytes` to `buf` (first padded to 4 bytes, as vertex attributes
+/// must be aligned), as a new buffer view with `stride` bytes between
+/// elements, and `accessor` reading it (its `bufferView` filled in);
+/// returns the accessor's index. [`set_buffer`] then embeds `buf`.
+pub fn push_accessor(
+    d: &mut Value,
+    buf: &mut Vec<u8>,
+    bytes: &[u8],
+    stride: Option<usize>,
+    mut accessor: Value,
+) -> usize {
+    buf.resize(buf.len().next_multiple_of(4), 0);
+    let views = d["bufferViews"].as_array_mut().expect("bufferViews");
+    let mut view = json!({"buffer": 0, "byteOffset": buf.len(), "byteLength": bytes.len()});
+    if let Some(stride) = stride {
+        view["byteStride"] = json!(stride);
+    }
+    accessor["bufferView"] = json!(views.len());
+    views.push(view);
+    buf.extend_from_slice(bytes);
+    let accessors = d["accessors"].as_array_mut().expect("accessors");
+    accessors.push(accessor);
+    accessors.len() - 1
+}
+
+/// Makes `buf` the document's one buffer, embedded as a `data:` URI.
+pub fn set_buffer(d: &mut Value, buf: &[u8]) {
+    d["buffers"] = json!([{"uri": data_uri(buf), "byteLength": buf.len()}]);
+}
