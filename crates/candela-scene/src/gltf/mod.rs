@@ -17,6 +17,7 @@
 mod accessors;
 mod buffers;
 mod cameras;
+mod clearcoat;
 mod glb;
 mod lights;
 mod materials;
@@ -38,6 +39,7 @@ use std::path::Path;
 /// file lists as required).
 const READ_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
+    "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_transmission",
     "KHR_materials_ior",
