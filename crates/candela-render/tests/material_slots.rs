@@ -130,8 +130,8 @@ fn every_texture_slot_is_read_or_reported_by_name() {
     let (m, unsupported) = Material::from_desc(&lamp, &mut cache);
     assert_eq!(
         unsupported.len(),
-        6,
-        "colour, roughness, metalness, normal, bump, blend weight: {unsupported:?}"
+        8,
+        "colour, roughness, metalness, normal, bump, blend weight, clear coat and its roughness: {unsupported:?}"
     );
     assert!(m.emission.is_some(), "the emission texture makes it a lamp");
     std::fs::remove_dir_all(&dir).ok();
