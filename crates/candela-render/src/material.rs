@@ -168,9 +168,12 @@ impl Material {
                 ior,
                 specular,
                 specular_color,
+                clearcoat,
+                clearcoat_roughness,
             } => Some(Bsdf::MetallicRoughness(
                 MetallicRoughness::new(base_color, metallic, roughness, transmission, ior)
-                    .with_specular(specular, specular_color),
+                    .with_specular(specular, specular_color)
+                    .with_clearcoat(clearcoat, clearcoat_roughness),
             )),
             BsdfDesc::Principled(p) => Some(Bsdf::Principled(Principled::new(p))),
             BsdfDesc::Blend(ref blend) => {

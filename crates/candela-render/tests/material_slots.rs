@@ -61,14 +61,16 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         "{}",
         albedo(&m)
     );
-    // A Lambertian surface has no roughness, metalness or blend weight;
-    // every other slot drives something.
+    // A Lambertian surface has no roughness, metalness, blend weight or
+    // clear coat; every other slot drives something.
     let names: Vec<&str> = unsupported.iter().map(|u| u.0.as_str()).collect();
-    assert_eq!(names.len(), 3, "{names:?}");
+    assert_eq!(names.len(), 5, "{names:?}");
     for slot in [
         TextureSlot::Roughness,
         TextureSlot::Metalness,
         TextureSlot::Weight,
+        TextureSlot::Clearcoat,
+        TextureSlot::ClearcoatRoughness,
     ] {
         assert!(
             names
@@ -115,6 +117,8 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         ior: 1.5,
         specular: 1.0,
         specular_color: Vec3::ONE,
+        clearcoat: 0.0,
+        clearcoat_roughness: 0.0,
     };
     let (_, unsupported) = Material::from_desc(&gltf, &mut cache);
     assert!(
@@ -126,8 +130,8 @@ fn every_texture_slot_is_read_or_reported_by_name() {
     let (m, unsupported) = Material::from_desc(&lamp, &mut cache);
     assert_eq!(
         unsupported.len(),
-        6,
-        "colour, roughness, metalness, normal, bump, blend weight: {unsupported:?}"
+        8,
+        "colour, roughness, metalness, normal, bump, blend weight, clear coat and its roughness: {unsupported:?}"
     );
     assert!(m.emission.is_some(), "the emission texture makes it a lamp");
     std::fs::remove_dir_all(&dir).ok();

@@ -206,6 +206,8 @@ fn a_flat_normal_map_renders_bit_for_bit_as_none() {
             ior: 1.5,
             specular: 1.0,
             specular_color: Vec3::ONE,
+            clearcoat: 0.0,
+            clearcoat_roughness: 0.0,
         },
         None,
     );

@@ -207,6 +207,8 @@ fn metallic_roughness_materials_map_onto_the_bsdfs() {
             ior: 1.5,
             specular: 1.0,
             specular_color: Vec3::ONE,
+            clearcoat: 0.0,
+            clearcoat_roughness: 0.0,
         }
     );
 }
@@ -288,6 +290,8 @@ fn emission_transmission_and_texture_slots() {
             ior: 1.33,
             specular: 1.0,
             specular_color: Vec3::ONE,
+            clearcoat: 0.0,
+            clearcoat_roughness: 0.0,
         }
     );
 }

@@ -1,6 +1,7 @@
 //! The glTF 2.0 metallic-roughness BSDF (glTF 2.0 specification,
 //! appendix B "BRDF Implementation"), with `KHR_materials_transmission`,
-//! `KHR_materials_ior` and `KHR_materials_specular`.
+//! `KHR_materials_ior`, `KHR_materials_specular` and
+//! `KHR_materials_clearcoat`.
 //!
 //! With base colour c, metalness m, transmission t, α = roughness² on GGX
 //! (Trowbridge-Reitz) microfacets, h the half vector and
@@ -19,7 +20,12 @@
 //!   At s = 0 the layer is gone and the dielectric is exactly Lambert c/π
 //!   (the base's weight below is then exactly 1): the way a glTF file says
 //!   "pure Lambertian";
-//! - f = m · metal + (1 − m)(1 − t) · opaque dielectric + (1 − m) t · glass.
+//! - f_base = m · metal + (1 − m)(1 − t) · opaque dielectric + (1 − m) t · glass;
+//! - `KHR_materials_clearcoat`, with strength c and a coat of perceptual
+//!   roughness r_c (`clear_coat.rs`: GGX with α = r_c², F0 = 0.04):
+//!   f = (1 − c S(0.04, |cos θo|)) (1 − c S(0.04, |cos θi|)) · f_base +
+//!   c S(0.04, wo·h) · D_c(h) G2_c(wo, wi) / (4 cos θo cos θi).
+//!   At c = 0 every coat term is skipped: exactly the uncoated model.
 //!
 //! **Lambert's weight.** The spec's `fresnel_mix` weights the base by
 //! 1 − S(F0d) at the half vector, which is reciprocal but not energy
@@ -34,6 +40,24 @@
 //! reflects exactly c (1 − S(F0d, cos θo)), what the specular layer leaves
 //! (Shirley et al. 1997, "A Practitioners' Assessment of Light Reflection
 //! Models", use the same per-direction transmission factors).
+//!
+//! **The coat's weights.** The extension layers the coat as
+//! mix(base, coat, c · S(0.04, N·V)): the base is dimmed by
+//! 1 − c S(cos θo) and the coat's specular lobe is scaled by
+//! c S(cos θo), both at the viewing direction only, which is not
+//! reciprocal (the value changes when wo and wi swap). Here the coat's
+//! Fresnel is taken at the half vector, as the base's specular layer does
+//! (wo·h = wi·h, and for a smooth coat h is the normal, so it is exactly
+//! the spec's c S(cos θo)), and the base is dimmed once per crossing of
+//! the coat, (1 − c S(cos θo)) (1 − c S(cos θi)): symmetric, so reciprocal,
+//! and energy conserving, since the base gets at most the 1 − c S(cos θo)
+//! the coat leaves at wo (the look at wo is the spec's; the second factor
+//! is at least 1 − c at grazing wi and 0.96 or more over most of the
+//! cosine-weighted hemisphere). Not renormalised as the Lambert weight is:
+//! the base may be a metal, whose lobe would then exceed 1. The coat
+//! follows the shading normal (the extension's own coat normal map is
+//! reported by the loader), and it dims neither emission nor the
+//! transmitted light's colour beyond these weights.
 //!
 //! The transmitted fraction ("glass-like transmission") is the rough
 //! dielectric of `rough_dielectric.rs` (Walter et al. 2007) with the same
@@ -53,11 +77,14 @@
 //! rough dielectric with α clamped to [`MIN_ALPHA`](super::MIN_ALPHA).
 //!
 //! Sampling picks a lobe with probabilities that depend on `wo` only
-//! (the lobes' approximate albedos: Schlick at cos θo for the specular
-//! lobe, the rest of the dielectric's weight times the base's luminance for
+//! (the lobes' approximate albedos: c S(0.04, cos θo) for the coat, the
+//! rest shared by the base's lobes as their weights say; Schlick at cos θo
+//! for the specular lobe, the rest of the dielectric's weight times the base's luminance for
 //! the diffuse lobe, t(1 − m) for the glass), samples it (visible GGX
 //! normals, cosine hemisphere, or the rough dielectric), and returns the
-//! whole mixture's `f` and `pdf`. Single scattering: energy is lost at
+//! whole mixture's `f` and `pdf`. A smooth coat over a smooth specular
+//! layer puts two delta lobes in one direction; a delta sample then
+//! carries both (their reflectances over their summed probabilities). Single scattering: energy is lost at
 //! high roughness as for every microfacet model (see the furnace curve in
 //! `metallic_roughness_tests.rs`).
 
@@ -65,6 +92,7 @@ use std::f32::consts::FRAC_1_PI;
 
 use glam::{Vec2, Vec3};
 
+use super::clear_coat::ClearCoat;
 use super::distribution::{Masking, MicrofacetDistribution};
 use super::microfacet;
 use super::rough_dielectric::RoughDielectric;
@@ -82,13 +110,16 @@ pub struct MetallicRoughness {
     ior: f32,
     specular: f32,
     specular_color: Vec3,
+    coat: ClearCoat,
 }
 
-/// Lobe selection probabilities at one `wo`.
+/// Lobe selection probabilities of the base at one `wo`, and their
+/// approximate albedo before normalisation (to weigh the coat against).
 struct LobeChoice {
     specular: f32,
     diffuse: f32,
     glass: f32,
+    total: f32,
 }
 
 impl MetallicRoughness {
@@ -111,6 +142,7 @@ impl MetallicRoughness {
             ior: if ior.is_finite() { ior.max(1.0) } else { 1.5 },
             specular: 1.0,
             specular_color: Vec3::ONE,
+            coat: ClearCoat::NONE,
         }
     }
 
@@ -132,16 +164,35 @@ impl MetallicRoughness {
         }
     }
 
+    /// The same material with `KHR_materials_clearcoat`'s strength
+    /// (`clearcoatFactor`) and the coat's perceptual roughness
+    /// (`clearcoatRoughnessFactor`), each clamped to [0, 1] (NaN to 0).
+    pub fn with_clearcoat(self, factor: f32, roughness: f32) -> Self {
+        Self {
+            coat: ClearCoat::new(factor, roughness),
+            ..self
+        }
+    }
+
+    /// The clear coat's strength and perceptual roughness.
+    pub fn clearcoat(&self) -> (f32, f32) {
+        self.coat.parameters()
+    }
+
     /// Base colour.
     pub fn base_color(&self) -> Vec3 {
         self.base_color
     }
 
     /// The same material with other base colour, metalness or roughness
-    /// (textures), clamped as in [`MetallicRoughness::new`].
+    /// (textures), clamped as in [`MetallicRoughness::new`]; the coat is
+    /// kept.
     pub fn with(&self, base_color: Vec3, metallic: f32, roughness: f32) -> Self {
-        Self::new(base_color, metallic, roughness, self.transmission, self.ior)
-            .with_specular(self.specular, self.specular_color)
+        Self {
+            coat: self.coat,
+            ..Self::new(base_color, metallic, roughness, self.transmission, self.ior)
+                .with_specular(self.specular, self.specular_color)
+        }
     }
 
     /// Base colour, metalness, perceptual roughness.
@@ -170,6 +221,9 @@ impl MetallicRoughness {
             flags = flags
                 .union(BsdfFlags::TRANSMISSION)
                 .union(BsdfFlags::GLOSSY);
+        }
+        if self.coat.is_on() {
+            flags = flags.union(self.coat.flag());
         }
         flags
     }
@@ -247,8 +301,19 @@ impl MetallicRoughness {
         (1.0 - self.metallic) * (1.0 - self.transmission)
     }
 
-    /// The BSDF value (cosine excluded).
+    /// The BSDF value (cosine excluded): the base's, under the coat if
+    /// there is one.
     pub(super) fn f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        let base = self.base_f(wo, wi);
+        if !self.coat.is_on() {
+            return base;
+        }
+        let (up_o, up_i) = to_upper(wo, wi);
+        base * self.coat.base_weight(up_o.z, up_i.z.abs()) + Vec3::splat(self.coat.f(up_o, up_i))
+    }
+
+    /// The uncoated model's value.
+    fn base_f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         let glass = if self.glass_weight() > 0.0 {
             self.glass().f(wo, wi) * self.glass_weight()
         } else {
@@ -293,14 +358,36 @@ impl MetallicRoughness {
             specular: specular / total,
             diffuse: diffuse / total,
             glass: glass / total,
+            total,
         })
+    }
+
+    /// The probability of sampling the coat at `wo`: its share c S(cos θo)
+    /// against what it leaves to the base's lobes (their approximate
+    /// albedo `base.total`); 0 without a coat.
+    fn coat_probability(&self, wo: Vec3, base: Option<&LobeChoice>) -> f32 {
+        if !self.coat.is_on() {
+            return 0.0;
+        }
+        let coat = self.coat.reflected(wo.z.abs());
+        let rest = (1.0 - coat) * base.map_or(0.0, |c| c.total);
+        coat / (coat + rest)
     }
 
     /// The density of [`MetallicRoughness::sample`] per unit solid angle.
     pub(super) fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let Some(c) = self.choice(wo) else {
-            return 0.0;
-        };
+        let choice = self.choice(wo);
+        let coat = self.coat_probability(wo, choice.as_ref());
+        let base = choice.map_or(0.0, |c| self.base_pdf(&c, wo, wi));
+        if coat == 0.0 {
+            return base;
+        }
+        let (up_o, up_i) = to_upper(wo, wi);
+        (1.0 - coat) * base + coat * self.coat.pdf(up_o, up_i)
+    }
+
+    /// The base lobes' density, chosen as `c` says.
+    fn base_pdf(&self, c: &LobeChoice, wo: Vec3, wi: Vec3) -> f32 {
         let glass = if c.glass > 0.0 {
             c.glass * self.glass().pdf(wo, wi)
         } else {
@@ -319,11 +406,30 @@ impl MetallicRoughness {
 
     /// Picks a lobe with `u1`, samples it with `u2` (the glass reuses the
     /// rest of `u1`), and returns the mixture's value and density.
+    /// The coat, when there is one, is picked first (its probability
+    /// from [`MetallicRoughness::coat_probability`]) and the rest of `u1`
+    /// picks among the base's lobes.
     pub(super) fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
-        let c = self.choice(wo)?;
-        let sign = if wo.z < 0.0 { -1.0 } else { 1.0 };
+        let choice = self.choice(wo);
+        let coat = self.coat_probability(wo, choice.as_ref());
         let up_o = Vec3::new(wo.x, wo.y, wo.z.abs());
+        if u1 < coat {
+            if self.coat.is_smooth() {
+                return self.mirror_sample(wo, coat, choice.as_ref());
+            }
+            let wi = self.coat.sample(wo, u2)?;
+            return BsdfSample::of_mixture(wo, wi, BsdfFlags::GLOSSY, self.pdf(wo, wi), || {
+                self.f(wo, wi)
+            });
+        }
+        let c = choice?;
+        // Exactly `u1` without a coat (coat = 0).
+        let u1 = (u1 - coat) / (1.0 - coat);
+        let sign = if wo.z < 0.0 { -1.0 } else { 1.0 };
         if u1 < c.specular && self.is_smooth() {
+            if coat > 0.0 {
+                return self.mirror_sample(wo, coat, Some(&c));
+            }
             let weight = self.smooth_reflectance(up_o.z) / c.specular;
             return delta_sample(reflect_local(wo), weight, c.specular, MIRROR_FLAGS);
         }
@@ -338,6 +444,28 @@ impl MetallicRoughness {
             (self.glass().sample(wo, u, u2)?.wi, BsdfFlags::GLOSSY)
         };
         BsdfSample::of_mixture(wo, wi, lobe, self.pdf(wo, wi), || self.f(wo, wi))
+    }
+
+    /// The delta lobes at the mirror direction of `wo` with a coat (coat
+    /// probability `coat` > 0): a smooth coat, the base's smooth specular
+    /// layer dimmed by the coat, or both, each with its probability.
+    fn mirror_sample(&self, wo: Vec3, coat: f32, base: Option<&LobeChoice>) -> Option<BsdfSample> {
+        let cos = wo.z.abs();
+        let (mut reflectance, mut probability) = (Vec3::ZERO, 0.0);
+        if self.coat.is_smooth() {
+            reflectance += Vec3::splat(self.coat.reflected(cos));
+            probability += coat;
+        }
+        if let (Some(c), true) = (base, self.is_smooth()) {
+            reflectance += self.smooth_reflectance(cos) * self.coat.base_weight(cos, cos);
+            probability += (1.0 - coat) * c.specular;
+        }
+        delta_sample(
+            reflect_local(wo),
+            reflectance / probability,
+            probability,
+            MIRROR_FLAGS,
+        )
     }
 
     /// A representative colour: the base colour.

@@ -43,6 +43,9 @@ mod beckmann;
 mod blend;
 #[cfg(test)]
 mod blend_tests;
+mod clear_coat;
+#[cfg(test)]
+mod clear_coat_tests;
 mod coating;
 mod diffuse;
 #[cfg(test)]

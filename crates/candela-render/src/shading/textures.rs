@@ -10,6 +10,7 @@
 //! | colour | diffuse albedo; mirror reflectance; glass, refraction, thin and rough glass transmittance (the tint); smooth and rough plastic base; glTF and principled base colour; a smooth or rough conductor's normal-incidence reflectance F0 (η = 1, k = 2√(F0/(1−F0)), exact for F0) |
 //! | roughness (R, or the slot's channel) | rough conductor and rough glass α; a smooth conductor becomes a Beckmann rough conductor of α = value (as Mitsuba's `roughconductor` default); smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF and principled (perceptual) roughness |
 //! | metalness (B by default, glTF's channel) | glTF and principled metalness |
+//! | clear coat, clear coat roughness (R, or the slot's channel: glTF's are R and G) | the glTF model's coat strength and coat roughness |
 //! | normal map, bump map | the shading normal (`normal_map.rs`) |
 //! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
 //! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
@@ -18,7 +19,8 @@
 //! Colours are clamped to [0, 1] and one-value parameters to their ranges
 //! after scaling, so a texture never creates energy. A slot a BSDF has no
 //! parameter for (roughness on a mirror, thin glass or smooth plastic,
-//! metalness outside the glTF and principled models, colour or roughness on a blend (its parts
+//! metalness outside the glTF and principled models, a clear coat's slots outside the glTF
+//! model, colour or roughness on a blend (its parts
 //! have theirs), a blend weight on anything but a blend, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
@@ -54,6 +56,10 @@ pub struct MaterialTextures {
     /// A blend's weight (read by [`crate::material::Material::bsdf_at`],
     /// which mixes the parts).
     pub weight: Option<SlotTexture>,
+    /// The glTF clear coat's strength.
+    pub clearcoat: Option<SlotTexture>,
+    /// The glTF clear coat's perceptual roughness.
+    pub clearcoat_roughness: Option<SlotTexture>,
     /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
     /// fraction.
     pub opacity_cutoff: Option<f32>,
@@ -100,13 +106,19 @@ impl MaterialTextures {
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
             TextureSlot::Weight => &mut self.weight,
+            TextureSlot::Clearcoat => &mut self.clearcoat,
+            TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
         }
     }
 
     /// Whether any slot that changes the BSDF is filled.
     #[inline]
     pub(crate) fn textures_bsdf(&self) -> bool {
-        self.color.is_some() || self.roughness.is_some() || self.metalness.is_some()
+        self.color.is_some()
+            || self.roughness.is_some()
+            || self.metalness.is_some()
+            || self.clearcoat.is_some()
+            || self.clearcoat_roughness.is_some()
     }
 
     /// `bsdf` with its textured parameters read at `at`.
@@ -200,11 +212,17 @@ impl MaterialTextures {
                     .metalness
                     .as_ref()
                     .map_or(metallic, |t| t.value(at, METALNESS_CHANNEL));
-                Bsdf::MetallicRoughness(m.with(
-                    color.unwrap_or(base),
-                    metallic,
-                    roughness.unwrap_or(rough),
-                ))
+                let (coat, coat_roughness) = m.clearcoat();
+                let value = |t: &Option<SlotTexture>, v: f32| {
+                    t.as_ref().map_or(v, |t| t.value(at, DEFAULT_CHANNEL))
+                };
+                Bsdf::MetallicRoughness(
+                    m.with(color.unwrap_or(base), metallic, roughness.unwrap_or(rough))
+                        .with_clearcoat(
+                            value(&self.clearcoat, coat),
+                            value(&self.clearcoat_roughness, coat_roughness),
+                        ),
+                )
             }
             Bsdf::Principled(p) => {
                 let q = p.parameters();
@@ -270,6 +288,9 @@ fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
         // A blend's own colour and roughness: its parts have theirs.
         (TextureSlot::Color | TextureSlot::Roughness, Some(Bsdf::Blend(_))) => false,
         (TextureSlot::Color | TextureSlot::Normal | TextureSlot::Bump, Some(_)) => true,
+        (TextureSlot::Clearcoat | TextureSlot::ClearcoatRoughness, Some(b)) => {
+            matches!(b, Bsdf::MetallicRoughness(_))
+        }
         (TextureSlot::Metalness, Some(b)) => {
             matches!(b, Bsdf::MetallicRoughness(_) | Bsdf::Principled(_))
         }

@@ -90,11 +90,17 @@ pub enum TextureSlot {
     /// The weight of a [`BsdfDesc::Blend`]'s second part, in [0, 1] (the
     /// luminance of a colour texture, as Mitsuba reads one value).
     Weight,
+    /// The strength of the metallic-roughness model's clear coat in [0, 1]
+    /// (`KHR_materials_clearcoat`'s `clearcoatTexture`, red by default).
+    Clearcoat,
+    /// The clear coat's perceptual roughness in [0, 1]
+    /// (`clearcoatRoughnessTexture`, green in glTF files).
+    ClearcoatRoughness,
 }
 
 impl TextureSlot {
     /// Every slot, in declaration order.
-    pub const ALL: [TextureSlot; 8] = [
+    pub const ALL: [TextureSlot; 10] = [
         TextureSlot::Color,
         TextureSlot::Roughness,
         TextureSlot::Metalness,
@@ -103,6 +109,8 @@ impl TextureSlot {
         TextureSlot::Emission,
         TextureSlot::Opacity,
         TextureSlot::Weight,
+        TextureSlot::Clearcoat,
+        TextureSlot::ClearcoatRoughness,
     ];
 
     /// The slot's name in messages.
@@ -116,6 +124,8 @@ impl TextureSlot {
             TextureSlot::Emission => "emission",
             TextureSlot::Opacity => "opacity",
             TextureSlot::Weight => "blend weight",
+            TextureSlot::Clearcoat => "clear coat",
+            TextureSlot::ClearcoatRoughness => "clear coat roughness",
         }
     }
 
@@ -148,6 +158,10 @@ pub struct TextureSlots {
     pub opacity: Option<TextureRef>,
     /// A blend's weight.
     pub weight: Option<TextureRef>,
+    /// The glTF clear coat's strength.
+    pub clearcoat: Option<TextureRef>,
+    /// The glTF clear coat's roughness.
+    pub clearcoat_roughness: Option<TextureRef>,
     /// How the opacity slot's value is read: `None` as a coverage fraction
     /// (a point of opacity a is kept with probability a, glTF `BLEND`),
     /// `Some(c)` as a mask (opaque where the value is at least c, cut out
@@ -191,6 +205,8 @@ impl TextureSlots {
             TextureSlot::Emission => &self.emission,
             TextureSlot::Opacity => &self.opacity,
             TextureSlot::Weight => &self.weight,
+            TextureSlot::Clearcoat => &self.clearcoat,
+            TextureSlot::ClearcoatRoughness => &self.clearcoat_roughness,
         }
     }
 
@@ -204,6 +220,8 @@ impl TextureSlots {
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
             TextureSlot::Weight => &mut self.weight,
+            TextureSlot::Clearcoat => &mut self.clearcoat,
+            TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
         }
     }
 }
@@ -320,7 +338,7 @@ pub enum BsdfDesc {
     /// The glTF 2.0 metallic-roughness model (Lambert base, GGX specular
     /// with Schlick Fresnel, mixed by metalness) with
     /// `KHR_materials_transmission`, `KHR_materials_ior` and
-    /// `KHR_materials_specular`.
+    /// `KHR_materials_specular` and `KHR_materials_clearcoat`.
     MetallicRoughness {
         /// Base colour (linear), per channel in [0, 1].
         base_color: Vec3,
@@ -338,6 +356,12 @@ pub enum BsdfDesc {
         /// Tint of the dielectric layer's F0 (`specularColorFactor`, white
         /// by default).
         specular_color: Vec3,
+        /// Strength of the clear coat in [0, 1] (`KHR_materials_clearcoat`'s
+        /// `clearcoatFactor`, 0 by default: no coat).
+        clearcoat: f32,
+        /// The clear coat's perceptual roughness in [0, 1]
+        /// (`clearcoatRoughnessFactor`, 0 by default: a mirror-smooth coat).
+        clearcoat_roughness: f32,
     },
     /// The principled BSDF (Burley 2012/2015) as Mitsuba 3's `principled`
     /// defines it.

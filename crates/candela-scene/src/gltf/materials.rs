@@ -4,7 +4,8 @@
 //! `KHR_materials_transmission` (`transmissionFactor`),
 //! `KHR_materials_ior` (1.5 by default) and `KHR_materials_specular`
 //! (`specularFactor`, `specularColorFactor`; its two textures are reported
-//! and not read), and every texture in its slot.
+//! and not read), `KHR_materials_clearcoat` (`clearcoat.rs`), and every
+//! texture in its slot.
 //!
 //! `KHR_materials_volume` fills the inside of a mesh whose `thicknessFactor`
 //! is above 0 with an absorbing medium ([`volume_medium`]).
@@ -26,6 +27,7 @@
 //! back faces, which a path tracer has no use for.
 
 use super::accessors::Buffers;
+use super::clearcoat::read_clearcoat;
 use super::textures::texture_ref;
 use super::Ctx;
 use crate::desc::{
@@ -68,6 +70,7 @@ pub(super) fn volume_medium(m: &gltf::Material) -> Option<MediumDesc> {
 /// Reads material `m` with its textures.
 pub(super) fn read_material(
     ctx: &Ctx,
+    doc: &gltf::Document,
     buffers: &Buffers,
     m: &gltf::Material,
 ) -> Result<MaterialDesc, LoadError> {
@@ -96,6 +99,7 @@ pub(super) fn read_material(
             "the KHR_materials_specular textures are not read; their factors are used",
         )?;
     }
+    let coat = read_clearcoat(ctx, doc, m)?;
     let bsdf = BsdfDesc::MetallicRoughness {
         base_color: base,
         metallic: metal,
@@ -104,6 +108,8 @@ pub(super) fn read_material(
         ior: m.ior().unwrap_or(1.5),
         specular: specular.as_ref().map_or(1.0, |s| s.specular_factor()),
         specular_color: specular.map_or(Vec3::ONE, |s| Vec3::from(s.specular_color_factor())),
+        clearcoat: coat.as_ref().map_or(0.0, |c| c.factor),
+        clearcoat_roughness: coat.as_ref().map_or(0.0, |c| c.roughness),
     };
     let strength = m.emissive_strength().unwrap_or(1.0);
     let emissive = Vec3::from(m.emissive_factor()) * strength;
@@ -164,6 +170,22 @@ pub(super) fn read_material(
         metal,
         Some(2),
     )?;
+    if let Some(c) = coat {
+        slot(
+            TextureSlot::Clearcoat,
+            c.texture,
+            ColorSpace::Linear,
+            c.factor,
+            Some(0),
+        )?;
+        slot(
+            TextureSlot::ClearcoatRoughness,
+            c.roughness_texture,
+            ColorSpace::Linear,
+            c.roughness,
+            Some(1),
+        )?;
+    }
     let normal = m.normal_texture();
     let scale = normal.as_ref().map_or(1.0, |n| n.scale());
     let normal = match normal {
@@ -208,7 +230,7 @@ pub(super) fn read_material(
 }
 
 /// A texture reference's texture, UV set and uv transform.
-type TexInfo<'a> = (gltf::Texture<'a>, u32, UvTransform);
+pub(super) type TexInfo<'a> = (gltf::Texture<'a>, u32, UvTransform);
 
 /// A texture reference's texture, its UV set (`KHR_texture_transform`'s
 /// `texCoord` overrides the reference's) and its uv transform.
@@ -258,7 +280,11 @@ fn normal_transform(
 /// at T(offset)·R(rotation)·S(scale)·uv, with R = [[cos, sin], [−sin, cos]]
 /// (rows), in glTF's uv, whose v runs down the image; Candela's v runs up
 /// (v = 1 − v_glTF, `meshes.rs`), so the map is F·M·F with F(u, v) = (u, 1 − v).
-fn khr_texture_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> UvTransform {
+pub(super) fn khr_texture_transform(
+    offset: [f32; 2],
+    rotation: f32,
+    scale: [f32; 2],
+) -> UvTransform {
     let (s, c) = rotation.sin_cos();
     let gltf = Affine2::from_cols(
         Vec2::new(c, -s) * scale[0],

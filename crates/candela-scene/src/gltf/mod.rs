@@ -18,6 +18,7 @@
 mod accessors;
 mod buffers;
 mod cameras;
+mod clearcoat;
 mod glb;
 mod lights;
 mod materials;
@@ -40,6 +41,7 @@ use std::path::Path;
 const READ_EXTENSIONS: &[&str] = &[
     "KHR_lights_punctual",
     "KHR_mesh_quantization",
+    "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_transmission",
     "KHR_materials_ior",

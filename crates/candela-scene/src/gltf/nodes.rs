@@ -31,6 +31,8 @@ struct Walk<'d> {
     materials: HashMap<(Option<usize>, bool), usize>,
     cameras: Vec<(usize, CameraDesc)>,
     buffers: &'d Buffers<'d>,
+    /// The document, for texture references inside untyped extensions.
+    doc: &'d gltf::Document,
 }
 
 /// Walks the document's scene into a [`SceneDesc`]; cameras are kept in the
@@ -66,6 +68,7 @@ pub(super) fn read_scene(
         materials: HashMap::new(),
         cameras: Vec::new(),
         buffers,
+        doc,
     };
     let mut visited = vec![false; doc.nodes().len()];
     let mut stack: Vec<(gltf::Node, Mat4, usize)> = roots
@@ -195,7 +198,7 @@ fn material_of(
         return Ok(known);
     }
     let mut desc = match m.index() {
-        Some(_) => materials::read_material(ctx, walk.buffers, m)?,
+        Some(_) => materials::read_material(ctx, walk.doc, walk.buffers, m)?,
         None => MaterialDesc::default_grey(),
     };
     if vertex_colored {

@@ -120,6 +120,8 @@ pub(super) fn for_slot(slot: TextureSlot, mut texture: TextureRef) -> TextureRef
             | TextureSlot::Opacity
             | TextureSlot::Bump
             | TextureSlot::Weight
+            | TextureSlot::Clearcoat
+            | TextureSlot::ClearcoatRoughness
     );
     if let (true, TextureSource::Checkerboard { color0, color1 }) = (one_value, &mut texture.source)
     {
