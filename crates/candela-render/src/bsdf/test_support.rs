@@ -197,6 +197,28 @@ pub(crate) fn energy_albedo_by_sampling(bsdf: &Bsdf, wo: Vec3, ior: f32, n: u32)
     })
 }
 
+/// A white furnace row: the energy albedo (see [`energy_albedo_by_sampling`],
+/// 40,000 samples) at 0°, 60° and 85° from the normal, asserted to be at
+/// most 1 within four standard errors plus `slack` when `bounded` (a model
+/// that may gain energy is tabulated only); `what` names the case in the
+/// failure. Returns the red channel's values as a table row, " a b c".
+pub(crate) fn furnace_row(bsdf: &Bsdf, ior: f32, bounded: bool, slack: f32, what: &str) -> String {
+    let mut row = String::new();
+    for theta in [0.0f32, 60.0, 85.0] {
+        let (s, c) = theta.to_radians().sin_cos();
+        let wo = Vec3::new(s, 0.0, c);
+        let e = energy_albedo_by_sampling(bsdf, wo, ior, 40_000);
+        assert!(
+            !bounded || e.mean.max_element() <= 1.0 + 4.0 * e.std_error.max_element() + slack,
+            "{what} θ={theta}: {:?} ± {:?}",
+            e.mean,
+            e.std_error
+        );
+        row += &format!(" {:.2}", e.mean.x);
+    }
+    row
+}
+
 /// η² for a refracted pair, 1 for a reflected one (see
 /// [`energy_albedo_by_sampling`]).
 pub(crate) fn energy_factor(wo: Vec3, wi: Vec3, ior: f32) -> f32 {
