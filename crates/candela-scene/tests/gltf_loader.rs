@@ -5,7 +5,8 @@
 mod gltf;
 
 use candela_scene::{
-    load, BsdfDesc, LightKind, LoadOptions, Loaded, Projection, TextureSlot, TextureWrap, WrapMode,
+    load, BsdfDesc, LightKind, LoadOptions, Loaded, Projection, TextureFilter, TextureSlot,
+    TextureWrap, WrapMode,
 };
 use glam::{Mat4, Vec3};
 use gltf::{glb, gltf_text, write};
@@ -480,6 +481,74 @@ fn sampler_wrap_modes_are_kept_per_axis() {
     assert_eq!(wrap(TextureSlot::Color), clamp_mirror);
     assert_eq!(wrap(TextureSlot::Roughness), repeat_clamp);
     assert_eq!(wrap(TextureSlot::Normal), TextureWrap::REPEAT);
+}
+
+#[test]
+fn sampler_mag_filter_nearest_keeps_texels_sharp() {
+    // 9728 NEAREST, 9729 LINEAR; the default (no sampler, or no magFilter)
+    // is the renderer's bilinear filter.
+    let png = gltf::data_uri(b"\x89PNG not really");
+    let text = gltf_text(|d| {
+        d["images"] = json!([{"uri": png.replace("application/octet-stream", "image/png")}]);
+        d["samplers"] = json!([{"magFilter": 9728, "minFilter": 9729}, {"magFilter": 9729}]);
+        d["textures"] = json!([
+            {"source": 0, "sampler": 0},
+            {"source": 0, "sampler": 1},
+            {"source": 0}
+        ]);
+        d["materials"] = json!([{
+            "pbrMetallicRoughness": {
+                "baseColorTexture": {"index": 0},
+                "metallicRoughnessTexture": {"index": 1}},
+            "normalTexture": {"index": 2}
+        }]);
+    });
+    let l = load_ok(&write("mag_filter.gltf", &text));
+    assert!(l.report.is_empty(), "{}", l.report);
+    let t = &l.scene.materials[0].textures;
+    let filter = |slot| t.get(slot).expect("textured").filter;
+    assert_eq!(filter(TextureSlot::Color), TextureFilter::Nearest);
+    assert_eq!(filter(TextureSlot::Roughness), TextureFilter::Bilinear);
+    assert_eq!(filter(TextureSlot::Normal), TextureFilter::Bilinear);
+}
+
+#[test]
+fn loads_of_one_new_embedded_image_on_many_threads_all_succeed() {
+    // Bytes no earlier run has cached (the process id and the clock), so
+    // every thread finds the cache file missing and writes it: each write
+    // must use its own temporary file, or one thread's rename takes the
+    // file from under another's.
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos());
+    // A megabyte, so the writes take long enough to overlap.
+    let mut fresh = format!("\u{89}PNG fresh {} {nanos}", std::process::id()).into_bytes();
+    fresh.resize(1 << 20, 7);
+    let png = gltf::data_uri(&fresh);
+    let text = gltf_text(|d| {
+        d["images"] = json!([{"uri": png.replace("application/octet-stream", "image/png")}]);
+        d["textures"] = json!([{"source": 0}]);
+        d["materials"] = json!([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]);
+    });
+    let path = write("fresh_image.gltf", &text);
+    let cached: Vec<PathBuf> = std::thread::scope(|s| {
+        let loads: Vec<_> = (0..16).map(|_| s.spawn(|| load_ok(&path))).collect();
+        loads
+            .into_iter()
+            .map(|l| {
+                let l = l.join().expect("a load panicked");
+                let image = l.scene.materials[0].textures.get(TextureSlot::Color);
+                image
+                    .and_then(|t| t.image_path())
+                    .expect("an image")
+                    .to_path_buf()
+            })
+            .collect()
+    });
+    assert!(cached.iter().all(|p| p == &cached[0]), "{cached:?}");
+    let bytes = std::fs::read(&cached[0]).expect("the cached image");
+    assert!(bytes == fresh, "the cached image holds other bytes");
+    std::fs::remove_file(&cached[0]).expect("the cached image removed");
 }
 
 #[test]

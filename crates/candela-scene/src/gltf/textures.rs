@@ -3,14 +3,18 @@
 //! written once to a content-addressed file in the system's temporary
 //! directory (`candela-gltf-images/<hash>.<ext>`) and referenced from there;
 //! external images are referenced beside the scene as they are. The
-//! texture's sampler gives its wrap mode per axis (`wrapS`, `wrapT`).
+//! texture's sampler gives its wrap mode per axis (`wrapS`, `wrapT`) and,
+//! by `magFilter`, whether texels are interpolated: `NEAREST` keeps texels
+//! sharp (pixel art, masks), anything else is bilinear. `minFilter` asks for
+//! mipmaps, which the renderer does not build, so it is not read.
 
 use super::accessors::Buffers;
 use super::buffers::{file_path, read_uri};
 use super::Ctx;
-use crate::desc::{ColorSpace, TextureRef, TextureWrap, WrapMode};
+use crate::desc::{ColorSpace, TextureFilter, TextureRef, TextureWrap, WrapMode};
 use crate::error::{ErrorKind, LoadError};
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The file of texture `tex`, read in `space`; `None` (after a warning) for
 /// one the loader cannot reference.
@@ -58,6 +62,9 @@ pub(super) fn texture_ref(
         u: wrap_mode(sampler.wrap_s()),
         v: wrap_mode(sampler.wrap_t()),
     };
+    if sampler.mag_filter() == Some(gltf::texture::MagFilter::Nearest) {
+        t.filter = TextureFilter::Nearest;
+    }
     Ok(Some(t))
 }
 
@@ -100,8 +107,18 @@ fn cache_file(ctx: &Ctx, at: &str, bytes: &[u8], mime: Option<&str>) -> Result<P
             )
         };
         std::fs::create_dir_all(&dir).map_err(io)?;
-        // Write beside and rename, so a concurrent load never sees half a file.
-        let tmp = dir.join(format!("{:016x}.{}.part", fnv1a(bytes), std::process::id()));
+        // Write beside and rename, so a concurrent load never sees half a
+        // file. The temporary name is unique to this write (process and a
+        // per-process count): two loads of one image in the same process
+        // (threads, the studio, tests) must not share it, or one renames
+        // the file away from under the other.
+        static WRITES: AtomicU64 = AtomicU64::new(0);
+        let tmp = dir.join(format!(
+            "{:016x}.{}.{}.part",
+            fnv1a(bytes),
+            std::process::id(),
+            WRITES.fetch_add(1, Ordering::Relaxed)
+        ));
         std::fs::write(&tmp, bytes).map_err(io)?;
         std::fs::rename(&tmp, &path).map_err(io)?;
     }
