@@ -3,7 +3,7 @@
 //! The renderer resolves its film into an [`RgbImage`] of linear radiance;
 //! this crate turns it into files ([`write_png`] through a [`ToneMap`],
 //! [`write_exr`] with denoiser layers), reads textures back ([`read_png`],
-//! [`read_exr`], and JPEG, TGA, BMP and Radiance HDR through [`read_stored`]
+//! [`read_exr`], and JPEG, TGA, BMP, WebP and Radiance HDR through [`read_stored`]
 //! and [`read_radiance_hdr`]), measures error ([`metrics`]) and denoises with Intel Open
 //! Image Denoise when it is installed ([`denoise`]). Every file is written
 //! through [`atomic_write`], so an output path never holds a partial file.

@@ -1,5 +1,5 @@
 //! Reading the image formats scenes use for textures besides PNG and EXR:
-//! JPEG, TGA and BMP (8-bit stored values, sRGB-encoded colour unless the
+//! JPEG, TGA, BMP and WebP (8-bit stored values, sRGB-encoded colour unless the
 //! scene says the data is linear) and Radiance HDR (`.hdr`, linear), through
 //! the `image` crate with a cap on the decoded size; and the Portable Float
 //! Map (`.pfm`, linear, pbrt's and Mitsuba's plain float format), read here.
@@ -10,9 +10,9 @@ use image::{DynamicImage, ImageReader, Limits};
 use std::path::Path;
 
 /// The 8-bit formats read as stored values, by lower-case extension.
-pub const STORED_EXTENSIONS: [&str; 4] = ["jpg", "jpeg", "tga", "bmp"];
+pub const STORED_EXTENSIONS: [&str; 5] = ["jpg", "jpeg", "tga", "bmp", "webp"];
 
-/// Reads a JPEG, TGA or BMP file's stored values, each scaled to [0, 1]
+/// Reads a JPEG, TGA, BMP or WebP file's stored values, each scaled to [0, 1]
 /// (`v / 255`, or `v / 65535` for 16-bit data), as RGBA with grey
 /// replicated to RGB and a missing alpha 1: the same form as
 /// [`crate::read_png_stored`], so textures read every 8-bit format alike.
@@ -202,6 +202,8 @@ mod tests {
         let cases = [
             ("t.tga", ImageFormat::Tga, true),
             ("t.bmp", ImageFormat::Bmp, true),
+            // The encoder writes lossless WebP (glTF's EXT_texture_webp).
+            ("t.webp", ImageFormat::WebP, true),
         ];
         for (name, format, alpha) in cases {
             let path = dir.join(name);

@@ -513,6 +513,42 @@ fn sampler_mag_filter_nearest_keeps_texels_sharp() {
 }
 
 #[test]
+fn ext_texture_webp_reads_the_webp_image() {
+    // Texture 0 has a PNG fallback and a WebP source; texture 1 only the
+    // WebP source, as a file that requires the extension may have. Both
+    // read the WebP image (embedded: cached under a .webp name, so the
+    // renderer picks its reader by the extension).
+    let png = gltf::data_uri(b"\x89PNG fallback").replace("application/octet-stream", "image/png");
+    let webp =
+        gltf::data_uri(b"RIFF....WEBPVP8L").replace("application/octet-stream", "image/webp");
+    let text = gltf_text(|d| {
+        d["extensionsUsed"] = json!(["EXT_texture_webp"]);
+        d["extensionsRequired"] = json!(["EXT_texture_webp"]);
+        d["images"] = json!([{"uri": png}, {"uri": webp}]);
+        let ext = json!({"EXT_texture_webp": {"source": 1}});
+        d["textures"] = json!([{"source": 0, "extensions": ext}, {"extensions": ext}]);
+        d["materials"] = json!([{
+            "pbrMetallicRoughness": {
+                "baseColorTexture": {"index": 0},
+                "metallicRoughnessTexture": {"index": 1}}
+        }]);
+    });
+    let l = load_ok(&write("webp.gltf", &text));
+    assert!(l.report.is_empty(), "{}", l.report);
+    let t = &l.scene.materials[0].textures;
+    for slot in [TextureSlot::Color, TextureSlot::Roughness] {
+        let path = t.get(slot).and_then(|t| t.image_path()).expect("an image");
+        assert_eq!(
+            path.extension().and_then(|e| e.to_str()),
+            Some("webp"),
+            "{slot:?}"
+        );
+        let bytes = std::fs::read(path).expect("the cached image");
+        assert_eq!(bytes, b"RIFF....WEBPVP8L", "{slot:?}");
+    }
+}
+
+#[test]
 fn loads_of_one_new_embedded_image_on_many_threads_all_succeed() {
     // Bytes no earlier run has cached (the process id and the clock), so
     // every thread finds the cache file missing and writes it: each write

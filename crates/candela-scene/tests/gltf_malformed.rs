@@ -284,6 +284,32 @@ fn image_in_a_buffer_view_without_a_mime_type() {
     );
 }
 
+#[test]
+fn webp_source_past_the_images() {
+    case(
+        "webp-index.gltf",
+        ErrorKind::IndexOutOfRange,
+        "/textures/0/extensions/EXT_texture_webp/source",
+        |d| {
+            textured(d, json!({"uri": "albedo.png"}));
+            d["textures"][0]["extensions"] = json!({"EXT_texture_webp": {"source": 3}});
+        },
+    );
+}
+
+#[test]
+fn webp_extension_without_a_source() {
+    case(
+        "webp-none.gltf",
+        ErrorKind::MissingElement,
+        "/textures/0/extensions/EXT_texture_webp/source",
+        |d| {
+            textured(d, json!({"uri": "albedo.png"}));
+            d["textures"][0]["extensions"] = json!({"EXT_texture_webp": {}});
+        },
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 1000, failure_persistence: None, ..ProptestConfig::default() })]
 

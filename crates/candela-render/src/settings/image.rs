@@ -54,7 +54,7 @@ pub struct ImageSettings {
     pub focal_distance: Option<f32>,
 
     /// Environment map: an equirectangular image (.exr, .hdr, .pfm, or an
-    /// 8-bit .png, .jpg, .tga, .bmp read as sRGB), +Y up, lighting the scene
+    /// 8-bit .png, .jpg, .tga, .bmp, .webp read as sRGB), +Y up, lighting the scene
     /// from infinitely far away; `sky` is a built-in procedural sky with a
     /// sun.
     #[cfg_attr(feature = "cli", arg(short = 'e', long = "env", value_name = "MAP"))]

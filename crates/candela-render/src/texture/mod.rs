@@ -10,7 +10,7 @@
 //! of a bilinear lookup's four texels on its own.
 //!
 //! Images are read once per path and colour space ([`TextureCache`]).
-//! Texels of the 8-bit formats (PNG, JPEG, TGA, BMP) are taken from the
+//! Texels of the 8-bit formats (PNG, JPEG, TGA, BMP, WebP) are taken from the
 //! file's stored values: decoded from sRGB when the description says
 //! [`ColorSpace::Srgb`] (colour, emission), and exactly `v / 255` when it
 //! says [`ColorSpace::Linear`] (roughness, metalness, normal maps,
@@ -42,7 +42,9 @@ pub enum TextureError {
     #[error(transparent)]
     Image(#[from] ImageError),
     /// The file's extension is not one of the formats read.
-    #[error("{0}: unknown image format (expected .png, .jpg, .tga, .bmp, .exr, .hdr or .pfm)")]
+    #[error(
+        "{0}: unknown image format (expected .png, .jpg, .tga, .bmp, .webp, .exr, .hdr or .pfm)"
+    )]
     UnknownFormat(PathBuf),
     /// The image has no pixels.
     #[error("the image is empty (0 pixels)")]
@@ -57,7 +59,7 @@ fn extension(path: &Path) -> Option<String> {
 }
 
 /// Whether `path` is an 8-bit format read as stored values (PNG, JPEG,
-/// TGA, BMP), sRGB-encoded unless a scene says the data is linear.
+/// TGA, BMP, WebP), sRGB-encoded unless a scene says the data is linear.
 fn is_stored_format(path: &Path) -> bool {
     extension(path).is_some_and(|e| e == "png" || STORED_EXTENSIONS.contains(&e.as_str()))
 }

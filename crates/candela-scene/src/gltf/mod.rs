@@ -48,6 +48,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_specular",
     "KHR_materials_volume",
     "KHR_texture_transform",
+    "EXT_texture_webp",
 ];
 
 /// The file being loaded and the warnings so far.
@@ -128,6 +129,7 @@ pub(crate) fn load_bytes(
         })?;
     check_position_indices(&ctx, &root)?;
     check_image_sources(&ctx, &root)?;
+    use_webp_sources(&ctx, &mut root)?;
     accept_read_requirements(&mut root);
     let doc = gltf::Document::from_json(root).map_err(|e| validation_error(&ctx, e))?;
     report_unsupported(&ctx, &doc)?;
@@ -177,6 +179,43 @@ fn check_position_indices(ctx: &Ctx, root: &gltf::json::Root) -> Result<(), Load
 fn accept_read_requirements(root: &mut gltf::json::Root) {
     root.extensions_required
         .retain(|ext| !READ_EXTENSIONS.contains(&ext.as_str()));
+}
+
+/// Points every texture with an `EXT_texture_webp` source at that image:
+/// the renderer reads WebP, and the extension's image is the one the file's
+/// author meant (the core `source`, if any, is a fallback for readers
+/// without WebP, and may be absent when the extension is required). An
+/// extension source that names no image is refused here, by its pointer.
+fn use_webp_sources(ctx: &Ctx, root: &mut gltf::json::Root) -> Result<(), LoadError> {
+    let images = root.images.len();
+    for (i, texture) in root.textures.iter_mut().enumerate() {
+        let Some(webp) = texture
+            .extensions
+            .as_ref()
+            .and_then(|e| e.others.get("EXT_texture_webp"))
+        else {
+            continue;
+        };
+        let at = format!("/textures/{i}/extensions/EXT_texture_webp/source");
+        let index = webp.get("source").ok_or_else(|| {
+            ctx.err(
+                at.clone(),
+                ErrorKind::MissingElement,
+                "the extension needs a source image".into(),
+            )
+        })?;
+        match index.as_u64().filter(|&n| n < images as u64) {
+            Some(n) => texture.source = gltf::json::Index::new(n as u32),
+            None => {
+                return Err(ctx.err(
+                    at,
+                    ErrorKind::IndexOutOfRange,
+                    format!("{index} is not an image index ({images} images)"),
+                ))
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Refuses an image without a source before the `gltf` crate reads it:

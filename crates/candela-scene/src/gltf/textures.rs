@@ -3,6 +3,8 @@
 //! written once to a content-addressed file in the system's temporary
 //! directory (`candela-gltf-images/<hash>.<ext>`) and referenced from there;
 //! external images are referenced beside the scene as they are. The
+//! texture's image is its `EXT_texture_webp` source when it has one
+//! (`use_webp_sources` in `mod.rs`). The
 //! texture's sampler gives its wrap mode per axis (`wrapS`, `wrapT`) and,
 //! by `magFilter`, whether texels are interpolated: `NEAREST` keeps texels
 //! sharp (pixel art, masks), anything else is bilinear. `minFilter` asks for
@@ -86,6 +88,7 @@ fn cache_file(ctx: &Ctx, at: &str, bytes: &[u8], mime: Option<&str>) -> Result<P
     let ext = match mime {
         Some("image/png") => "png",
         Some("image/jpeg") => "jpg",
+        Some("image/webp") => "webp",
         Some(other) => {
             ctx.warn(
                 "image type",
