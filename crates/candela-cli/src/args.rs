@@ -58,7 +58,12 @@ pub enum Command {
 /// Flags of a render.
 #[derive(Args, Debug, Clone)]
 pub struct RenderArgs {
-    /// Scene file: .dae (COLLADA), .obj (Wavefront OBJ + MTL) or .ply (PLY). Omit it to render the built-in demo scene.
+    /// The scene file, in any format the loader reads (the help lists them
+    /// from the loader's own table, so it names every format there is).
+    #[arg(help = format!(
+        "Scene file: {}. Omit it to render the built-in demo scene",
+        candela_scene::supported_formats()
+    ))]
     pub scene: Option<PathBuf>,
 
     /// Output image: .png (8-bit sRGB) or .exr (linear float, with albedo

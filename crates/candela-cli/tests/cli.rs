@@ -308,6 +308,20 @@ fn ctrl_c_writes_the_partial_image_and_exits_130() {
 }
 
 #[test]
+fn the_help_names_every_scene_format() {
+    let help = candela(&["--help"]);
+    assert!(help.status.success());
+    let text = String::from_utf8_lossy(&help.stdout);
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    for format in candela_scene::supported_formats().split(", ") {
+        assert!(
+            text.contains(format),
+            "{format} missing from --help:\n{text}"
+        );
+    }
+}
+
+#[test]
 fn the_bounce_view_is_a_documented_flag_and_renders() {
     let help = candela(&["--help"]);
     assert!(help.status.success());
