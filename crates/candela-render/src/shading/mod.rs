@@ -22,6 +22,8 @@ mod blend_material_tests;
 #[cfg(test)]
 mod leak_tests;
 #[cfg(test)]
+mod metallic_roughness_slots_tests;
+#[cfg(test)]
 mod sides_tests;
 
 pub use normal_map::Terminator;

@@ -1,5 +1,6 @@
 //! A material's texture slots at a hit: every parameter the description can
-//! texture (colour, roughness, metalness, normal map, emission, opacity) is
+//! texture (colour, roughness, metalness, normal map, emission, opacity,
+//! the glTF model's coat, transmission and specular layer) is
 //! read at the hit (its `uv` and vertex colour, a [`TexturePoint`]) and
 //! put into the BSDF it belongs to.
 //!
@@ -11,17 +12,23 @@
 //! | roughness (R, or the slot's channel) | rough conductor and rough glass α; a smooth conductor becomes a Beckmann rough conductor of α = value (as Mitsuba's `roughconductor` default); smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF and principled (perceptual) roughness |
 //! | metalness (B by default, glTF's channel) | glTF and principled metalness |
 //! | clear coat, clear coat roughness (R, or the slot's channel: glTF's are R and G) | the glTF model's coat strength and coat roughness |
+//! | transmission (R, or the slot's channel) | the glTF model's transmitted fraction |
+//! | specular strength (alpha, glTF's channel, or the slot's) | the glTF model's specular layer strength |
+//! | specular colour | the glTF model's specular F0 tint (not clamped to 1: the model caps F0 itself, and glTF lets the factor exceed 1) |
 //! | normal map, bump map | the shading normal (`normal_map.rs`) |
 //! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
 //! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
 //! | blend weight (luminance, clamped to [0, 1]) | a blend's weight (`Material::bsdf_at`, which mixes the parts, each with its own slots) |
 //!
-//! Colours are clamped to [0, 1] and one-value parameters to their ranges
-//! after scaling, so a texture never creates energy. A slot a BSDF has no
-//! parameter for (roughness on a mirror, thin glass or smooth plastic,
-//! metalness outside the glTF and principled models, a clear coat's slots outside the glTF
-//! model, colour or roughness on a blend (its parts
-//! have theirs), a blend weight on anything but a blend, any of colour/roughness/metalness on a
+//! A colour slot's value is texel × tint × scale per channel, a one-value
+//! slot's the channel × scale ([`SlotTexture`]). Colours are clamped to
+//! [0, 1] (but the specular tint, above) and one-value parameters to their
+//! ranges after scaling, so a texture never creates energy. A slot a BSDF
+//! has no parameter for (roughness on a mirror, thin glass or smooth
+//! plastic, metalness outside the glTF and principled models, the clear
+//! coat's, transmission's and specular layer's slots outside the glTF
+//! model, colour or roughness on a blend (its parts have theirs), a blend
+//! weight on anything but a blend, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
 use crate::bsdf::{Bsdf, Masking, MicrofacetDistribution};
@@ -33,7 +40,8 @@ use glam::Vec3;
 const DEFAULT_CHANNEL: u8 = 0;
 /// glTF and most packers keep metalness in blue.
 const METALNESS_CHANNEL: u8 = 2;
-/// Alpha: opacity's default when the image has it.
+/// Alpha: opacity's default when the image has it, and the specular
+/// strength's (glTF's channel; 1 where the image has no alpha).
 const ALPHA_CHANNEL: u8 = 3;
 
 /// The textures of one material, read once at scene build.
@@ -60,6 +68,12 @@ pub struct MaterialTextures {
     pub clearcoat: Option<SlotTexture>,
     /// The glTF clear coat's perceptual roughness.
     pub clearcoat_roughness: Option<SlotTexture>,
+    /// The glTF model's transmitted fraction.
+    pub transmission: Option<SlotTexture>,
+    /// The glTF model's specular layer strength.
+    pub specular: Option<SlotTexture>,
+    /// The glTF model's specular F0 tint.
+    pub specular_color: Option<SlotTexture>,
     /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
     /// fraction.
     pub opacity_cutoff: Option<f32>,
@@ -108,6 +122,9 @@ impl MaterialTextures {
             TextureSlot::Weight => &mut self.weight,
             TextureSlot::Clearcoat => &mut self.clearcoat,
             TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
+            TextureSlot::Transmission => &mut self.transmission,
+            TextureSlot::Specular => &mut self.specular,
+            TextureSlot::SpecularColor => &mut self.specular_color,
         }
     }
 
@@ -119,6 +136,9 @@ impl MaterialTextures {
             || self.metalness.is_some()
             || self.clearcoat.is_some()
             || self.clearcoat_roughness.is_some()
+            || self.transmission.is_some()
+            || self.specular.is_some()
+            || self.specular_color.is_some()
     }
 
     /// `bsdf` with its textured parameters read at `at`.
@@ -208,20 +228,30 @@ impl MaterialTextures {
             }
             Bsdf::MetallicRoughness(m) => {
                 let (base, metallic, rough) = m.parameters();
-                let metallic = self
-                    .metalness
-                    .as_ref()
-                    .map_or(metallic, |t| t.value(at, METALNESS_CHANNEL));
                 let (coat, coat_roughness) = m.clearcoat();
-                let value = |t: &Option<SlotTexture>, v: f32| {
-                    t.as_ref().map_or(v, |t| t.value(at, DEFAULT_CHANNEL))
+                let (specular, specular_color) = m.specular();
+                let value = |t: &Option<SlotTexture>, v: f32, channel: u8| {
+                    t.as_ref().map_or(v, |t| t.value(at, channel))
                 };
+                let specular_color = self
+                    .specular_color
+                    .as_ref()
+                    .map_or(specular_color, |t| t.color(at));
                 Bsdf::MetallicRoughness(
-                    m.with(color.unwrap_or(base), metallic, roughness.unwrap_or(rough))
-                        .with_clearcoat(
-                            value(&self.clearcoat, coat),
-                            value(&self.clearcoat_roughness, coat_roughness),
-                        ),
+                    m.with(
+                        color.unwrap_or(base),
+                        value(&self.metalness, metallic, METALNESS_CHANNEL),
+                        roughness.unwrap_or(rough),
+                    )
+                    .with_transmission(value(&self.transmission, m.transmission(), DEFAULT_CHANNEL))
+                    .with_specular(
+                        value(&self.specular, specular, ALPHA_CHANNEL),
+                        specular_color,
+                    )
+                    .with_clearcoat(
+                        value(&self.clearcoat, coat, DEFAULT_CHANNEL),
+                        value(&self.clearcoat_roughness, coat_roughness, DEFAULT_CHANNEL),
+                    ),
                 )
             }
             Bsdf::Principled(p) => {
@@ -288,9 +318,14 @@ fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
         // A blend's own colour and roughness: its parts have theirs.
         (TextureSlot::Color | TextureSlot::Roughness, Some(Bsdf::Blend(_))) => false,
         (TextureSlot::Color | TextureSlot::Normal | TextureSlot::Bump, Some(_)) => true,
-        (TextureSlot::Clearcoat | TextureSlot::ClearcoatRoughness, Some(b)) => {
-            matches!(b, Bsdf::MetallicRoughness(_))
-        }
+        (
+            TextureSlot::Clearcoat
+            | TextureSlot::ClearcoatRoughness
+            | TextureSlot::Transmission
+            | TextureSlot::Specular
+            | TextureSlot::SpecularColor,
+            Some(b),
+        ) => matches!(b, Bsdf::MetallicRoughness(_)),
         (TextureSlot::Metalness, Some(b)) => {
             matches!(b, Bsdf::MetallicRoughness(_) | Bsdf::Principled(_))
         }
