@@ -5,8 +5,9 @@
 //! strength alpha, 1 where the image has none) and leaving every other
 //! parameter as it was.
 
-use super::MaterialTextures;
+use super::MetallicRoughnessSlots;
 use crate::bsdf::{Bsdf, MetallicRoughness};
+use crate::shading::MaterialTextures;
 use crate::texture::{ImageTexture, SlotTexture};
 use candela_image::RgbImage;
 use candela_scene::TextureFilter;
@@ -31,8 +32,13 @@ fn model(transmission: f32, specular: f32, specular_color: Vec3) -> MetallicRoug
         .with_clearcoat(0.3, 0.25)
 }
 
-/// `textures` applied to the untextured model at some uv.
-fn textured(textures: &MaterialTextures) -> Bsdf {
+/// A material's textures holding only `layers`, applied to the untextured
+/// model at some uv (through the material's whole texture path).
+fn textured(layers: MetallicRoughnessSlots) -> Bsdf {
+    let textures = MaterialTextures {
+        metallic_roughness: Some(Box::new(layers)),
+        ..MaterialTextures::default()
+    };
     let untextured = model(0.2, 0.9, Vec3::new(0.9, 1.0, 1.1));
     textures.apply(Bsdf::MetallicRoughness(untextured), Vec2::new(0.3, 0.7))
 }
@@ -58,16 +64,16 @@ fn a_constant_transmission_texture_is_its_value_as_the_factor() {
     // Red 0.7 (green and blue other values, unread) times the scale.
     let texel = Vec3::new(0.7, 0.1, 0.9);
     for (scale, channel) in [(1.0, None), (0.5, Some(0))] {
-        let textures = MaterialTextures {
+        let layers = MetallicRoughnessSlots {
             transmission: Some(SlotTexture {
                 scale,
                 channel,
                 ..constant(texel)
             }),
-            ..MaterialTextures::default()
+            ..MetallicRoughnessSlots::default()
         };
         let expected = model(0.7 * scale, 0.9, Vec3::new(0.9, 1.0, 1.1));
-        assert_model(textured(&textures), expected, "transmission");
+        assert_model(textured(layers), expected, "transmission");
     }
 }
 
@@ -75,26 +81,26 @@ fn a_constant_transmission_texture_is_its_value_as_the_factor() {
 fn a_constant_specular_texture_is_its_value_as_the_factor() {
     // No alpha in the image: the default channel (alpha) reads 1, so the
     // strength is the scale (glTF's specularFactor) alone.
-    let textures = MaterialTextures {
+    let layers = MetallicRoughnessSlots {
         specular: Some(SlotTexture {
             scale: 0.6,
             ..constant(Vec3::new(0.25, 0.5, 0.75))
         }),
-        ..MaterialTextures::default()
+        ..MetallicRoughnessSlots::default()
     };
     let expected = model(0.2, 0.6, Vec3::new(0.9, 1.0, 1.1));
-    assert_model(textured(&textures), expected, "specular, alpha");
+    assert_model(textured(layers), expected, "specular, alpha");
     // A named channel: its value times the scale.
-    let textures = MaterialTextures {
+    let layers = MetallicRoughnessSlots {
         specular: Some(SlotTexture {
             scale: 0.8,
             channel: Some(1),
             ..constant(Vec3::new(0.25, 0.5, 0.75))
         }),
-        ..MaterialTextures::default()
+        ..MetallicRoughnessSlots::default()
     };
     let expected = model(0.2, 0.5 * 0.8, Vec3::new(0.9, 1.0, 1.1));
-    assert_model(textured(&textures), expected, "specular, green");
+    assert_model(textured(layers), expected, "specular, green");
 }
 
 #[test]
@@ -102,13 +108,13 @@ fn a_constant_specular_colour_texture_is_texel_times_tint_as_the_factor() {
     // glTF's specularColorFactor × texel, per channel, unclamped (the
     // factor may exceed 1; the model caps F0 itself).
     let (texel, tint) = (Vec3::new(0.8, 0.5, 0.2), Vec3::new(1.0, 0.5, 2.5));
-    let textures = MaterialTextures {
+    let layers = MetallicRoughnessSlots {
         specular_color: Some(SlotTexture {
             tint,
             ..constant(texel)
         }),
-        ..MaterialTextures::default()
+        ..MetallicRoughnessSlots::default()
     };
     let expected = model(0.2, 0.9, texel * tint);
-    assert_model(textured(&textures), expected, "specular colour");
+    assert_model(textured(layers), expected, "specular colour");
 }

@@ -11,7 +11,7 @@
 //! | colour | diffuse albedo; mirror reflectance; glass, refraction, thin and rough glass transmittance (the tint); smooth and rough plastic base; glTF and principled base colour; a smooth or rough conductor's normal-incidence reflectance F0 (η = 1, k = 2√(F0/(1−F0)), exact for F0) |
 //! | roughness (R, or the slot's channel) | rough conductor and rough glass α; a smooth conductor becomes a Beckmann rough conductor of α = value (as Mitsuba's `roughconductor` default); smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF and principled (perceptual) roughness |
 //! | metalness (B by default, glTF's channel) | glTF and principled metalness |
-//! | clear coat, clear coat roughness (R, or the slot's channel: glTF's are R and G) | the glTF model's coat strength and coat roughness |
+//! | clear coat, clear coat roughness (R, or the slot's channel: glTF's are R and G) | the glTF model's coat strength and coat roughness (`metallic_roughness_slots.rs`, as the next three) |
 //! | transmission (R, or the slot's channel) | the glTF model's transmitted fraction |
 //! | specular strength (alpha, glTF's channel, or the slot's) | the glTF model's specular layer strength |
 //! | specular colour | the glTF model's specular F0 tint (not clamped to 1: the model caps F0 itself, and glTF lets the factor exceed 1) |
@@ -31,18 +31,19 @@
 //! weight on anything but a blend, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
+use super::metallic_roughness_slots::MetallicRoughnessSlots;
 use crate::bsdf::{Bsdf, Masking, MicrofacetDistribution};
 use crate::texture::{SlotTexture, TextureCache, TexturePoint};
 use candela_scene::{PerturbationRules, TextureSlot, TextureSlots};
 use glam::Vec3;
 
 /// The channel one-value slots read when the description names none.
-const DEFAULT_CHANNEL: u8 = 0;
+pub(super) const DEFAULT_CHANNEL: u8 = 0;
 /// glTF and most packers keep metalness in blue.
 const METALNESS_CHANNEL: u8 = 2;
 /// Alpha: opacity's default when the image has it, and the specular
 /// strength's (glTF's channel; 1 where the image has no alpha).
-const ALPHA_CHANNEL: u8 = 3;
+pub(super) const ALPHA_CHANNEL: u8 = 3;
 
 /// The textures of one material, read once at scene build.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -64,16 +65,10 @@ pub struct MaterialTextures {
     /// A blend's weight (read by [`crate::material::Material::bsdf_at`],
     /// which mixes the parts).
     pub weight: Option<SlotTexture>,
-    /// The glTF clear coat's strength.
-    pub clearcoat: Option<SlotTexture>,
-    /// The glTF clear coat's perceptual roughness.
-    pub clearcoat_roughness: Option<SlotTexture>,
-    /// The glTF model's transmitted fraction.
-    pub transmission: Option<SlotTexture>,
-    /// The glTF model's specular layer strength.
-    pub specular: Option<SlotTexture>,
-    /// The glTF model's specular F0 tint.
-    pub specular_color: Option<SlotTexture>,
+    /// The glTF model's clear coat, transmission and specular layer
+    /// slots, boxed (see [`MetallicRoughnessSlots`]); `None` when all are
+    /// empty.
+    pub metallic_roughness: Option<Box<MetallicRoughnessSlots>>,
     /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
     /// fraction.
     pub opacity_cutoff: Option<f32>,
@@ -104,12 +99,14 @@ impl MaterialTextures {
                 unusable.push(slot);
                 continue;
             }
-            let loaded = SlotTexture::load(t, cache);
-            *textures.slot_mut(slot) = loaded;
+            if let Some(loaded) = SlotTexture::load(t, cache) {
+                *textures.slot_mut(slot) = Some(loaded);
+            }
         }
         (textures, unusable)
     }
 
+    /// The field of `slot` (a glTF extension's slot opens the box).
     fn slot_mut(&mut self, slot: TextureSlot) -> &mut Option<SlotTexture> {
         match slot {
             TextureSlot::Color => &mut self.color,
@@ -120,25 +117,27 @@ impl MaterialTextures {
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
             TextureSlot::Weight => &mut self.weight,
-            TextureSlot::Clearcoat => &mut self.clearcoat,
-            TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
-            TextureSlot::Transmission => &mut self.transmission,
-            TextureSlot::Specular => &mut self.specular,
-            TextureSlot::SpecularColor => &mut self.specular_color,
+            TextureSlot::Clearcoat => &mut self.layers().clearcoat,
+            TextureSlot::ClearcoatRoughness => &mut self.layers().clearcoat_roughness,
+            TextureSlot::Transmission => &mut self.layers().transmission,
+            TextureSlot::Specular => &mut self.layers().specular,
+            TextureSlot::SpecularColor => &mut self.layers().specular_color,
         }
     }
 
-    /// Whether any slot that changes the BSDF is filled.
+    /// The glTF model's extension slots, boxed on first use.
+    fn layers(&mut self) -> &mut MetallicRoughnessSlots {
+        self.metallic_roughness.get_or_insert_with(Box::default)
+    }
+
+    /// Whether any slot that changes the BSDF is filled. Asked per path
+    /// vertex: four tests, whatever the glTF model's extensions add.
     #[inline]
     pub(crate) fn textures_bsdf(&self) -> bool {
         self.color.is_some()
             || self.roughness.is_some()
             || self.metalness.is_some()
-            || self.clearcoat.is_some()
-            || self.clearcoat_roughness.is_some()
-            || self.transmission.is_some()
-            || self.specular.is_some()
-            || self.specular_color.is_some()
+            || self.metallic_roughness.is_some()
     }
 
     /// `bsdf` with its textured parameters read at `at`.
@@ -228,31 +227,15 @@ impl MaterialTextures {
             }
             Bsdf::MetallicRoughness(m) => {
                 let (base, metallic, rough) = m.parameters();
-                let (coat, coat_roughness) = m.clearcoat();
-                let (specular, specular_color) = m.specular();
-                let value = |t: &Option<SlotTexture>, v: f32, channel: u8| {
-                    t.as_ref().map_or(v, |t| t.value(at, channel))
-                };
-                let specular_color = self
-                    .specular_color
+                let metallic = self
+                    .metalness
                     .as_ref()
-                    .map_or(specular_color, |t| t.color(at));
-                Bsdf::MetallicRoughness(
-                    m.with(
-                        color.unwrap_or(base),
-                        value(&self.metalness, metallic, METALNESS_CHANNEL),
-                        roughness.unwrap_or(rough),
-                    )
-                    .with_transmission(value(&self.transmission, m.transmission(), DEFAULT_CHANNEL))
-                    .with_specular(
-                        value(&self.specular, specular, ALPHA_CHANNEL),
-                        specular_color,
-                    )
-                    .with_clearcoat(
-                        value(&self.clearcoat, coat, DEFAULT_CHANNEL),
-                        value(&self.clearcoat_roughness, coat_roughness, DEFAULT_CHANNEL),
-                    ),
-                )
+                    .map_or(metallic, |t| t.value(at, METALNESS_CHANNEL));
+                let m = m.with(color.unwrap_or(base), metallic, roughness.unwrap_or(rough));
+                Bsdf::MetallicRoughness(match &self.metallic_roughness {
+                    Some(layers) => layers.apply(m, at),
+                    None => m,
+                })
             }
             Bsdf::Principled(p) => {
                 let q = p.parameters();
