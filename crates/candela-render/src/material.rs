@@ -198,7 +198,7 @@ impl Material {
             )));
         }
         let emission = match &textures.emission {
-            Some(t) => Some(t.mean() * t.scale.max(0.0)),
+            Some(t) => Some(t.mean_color()),
             None => desc.emission,
         }
         .filter(|e| e.max_element() > 0.0);

@@ -7,37 +7,18 @@
 mod gltf;
 
 use candela_scene::{load, BsdfDesc, LoadOptions, Loaded, TextureSlot};
-use gltf::{gltf_text, write};
+use gltf::write;
 use serde_json::{json, Value};
 
 fn load_ok(path: &std::path::Path) -> Loaded {
     load(path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// A document with one material per entry of `materials`, each on its own
-/// primitive, and two (unreadable) PNG textures.
+/// A document with one material per entry of `materials` and two
+/// (unreadable) PNG textures ([`gltf::with_materials`]).
 fn with_materials(name: &str, materials: Value) -> Loaded {
-    let png = gltf::data_uri(b"\x89PNG not really");
-    let n = materials.as_array().map_or(0, Vec::len);
-    let text = gltf_text(|d| {
-        d["extensionsUsed"] = json!(["KHR_materials_clearcoat", "KHR_texture_transform"]);
-        d["images"] = json!([
-            {"uri": png.replace("application/octet-stream", "image/png")},
-            {"uri": "coat roughness.png"}
-        ]);
-        d["textures"] = json!([{"source": 0}, {"source": 1}]);
-        d["materials"] = materials;
-        let first = d["meshes"][0]["primitives"][0].clone();
-        let primitives: Vec<Value> = (0..n)
-            .map(|i| {
-                let mut p = first.clone();
-                p["material"] = json!(i);
-                p
-            })
-            .collect();
-        d["meshes"][0]["primitives"] = json!(primitives);
-    });
-    load_ok(&write(name, &text))
+    let extensions = ["KHR_materials_clearcoat", "KHR_texture_transform"];
+    load_ok(&write(name, &gltf::with_materials(&extensions, materials)))
 }
 
 fn coat_of(bsdf: &BsdfDesc) -> (f32, f32) {
@@ -80,7 +61,7 @@ fn clearcoat_factors_and_textures_arrive() {
     assert!(!coat.uv.is_identity() && rough.uv.is_identity());
     assert!(rough
         .image_path()
-        .is_some_and(|p| p.ends_with("coat roughness.png")));
+        .is_some_and(|p| p.ends_with("second texture.png")));
     assert!(m[1].textures.get(TextureSlot::Clearcoat).is_none());
     // Only the coat's normal map is reported, once, by name.
     assert!(

@@ -298,6 +298,34 @@ fn emission_transmission_and_texture_slots() {
 }
 
 #[test]
+fn colour_factors_tint_their_textures_per_channel() {
+    // glTF: base colour = baseColorFactor × texel, emission = emissiveFactor
+    // × emissive_strength × texel, per channel; neither is reported.
+    let text = gltf::with_materials(
+        &["KHR_materials_emissive_strength"],
+        json!([{
+            "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.3, 1.0],
+                                     "baseColorTexture": {"index": 0}},
+            "emissiveFactor": [1.0, 0.5, 0.0], "emissiveTexture": {"index": 1},
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}}}]),
+    );
+    let l = load_ok(&write("tinted.gltf", &text));
+    assert!(l.report.warnings.is_empty(), "{}", l.report);
+    let t = &l.scene.materials[0].textures;
+    let color = t.get(TextureSlot::Color).expect("baseColorTexture");
+    assert_eq!(color.tint, Vec3::new(0.9, 0.6, 0.3));
+    assert_eq!((color.scale, color.channel), (1.0, None));
+    let emission = t.get(TextureSlot::Emission).expect("emissiveTexture");
+    assert_eq!(emission.tint, Vec3::new(1.0, 0.5, 0.0));
+    assert_eq!((emission.scale, emission.channel), (4.0, None));
+    // The constant emission stays the factor times the strength.
+    assert_eq!(
+        l.scene.materials[0].emission,
+        Some(Vec3::new(4.0, 2.0, 0.0))
+    );
+}
+
+#[test]
 fn unsupported_features_are_reported_once_by_name() {
     let text = gltf_text(|d| {
         d["extensionsUsed"] = json!([

@@ -222,25 +222,27 @@ fn gltf_color_0_reads_floats_and_normalised_integers() {
 fn gltf_vertex_colours_multiply_the_base_colour() {
     let floats = [0.25f32, 0.5, 1.0, 0.0, 0.125, 1.0, 0.75, 0.5, 0.25];
     let bytes: Vec<u8> = floats.iter().flat_map(|v| v.to_le_bytes()).collect();
-    // Without a texture: the vertex colour, scaled by the (grey) factor.
+    // Without a texture: the vertex colour, tinted by the factor, channel
+    // by channel (a coloured factor, kept whole, unreported).
     let l = load_file(
         "factor.gltf",
-        &gltf_with_colors(&bytes, 5126, "VEC3", [0.6, 0.6, 0.6, 1.0]),
+        &gltf_with_colors(&bytes, 5126, "VEC3", [0.9, 0.6, 0.3, 1.0]),
     );
+    assert!(l.report.warnings.is_empty(), "{}", l.report);
     let mesh = &l.scene.meshes[0];
     let t = color_texture(&l.scene.materials[mesh.material]);
     assert_eq!(t.source, TextureSource::VertexColor);
-    assert!((t.scale - 0.6).abs() < 1e-6, "scale {}", t.scale);
+    assert_eq!((t.tint, t.scale), (Vec3::new(0.9, 0.6, 0.3), 1.0));
     assert!(!t.times_vertex_color);
 
     // With a base colour texture: the texture times the vertex colour,
-    // with the factor its scale. A primitive of the same material without
-    // COLOR_0 keeps the plain texture.
+    // with the factor its tint. A primitive of the same material without
+    // COLOR_0 keeps the plain texture (and the tint).
     let mut doc: serde_json::Value = serde_json::from_slice(&gltf_with_colors(
         &bytes,
         5126,
         "VEC3",
-        [0.5, 0.5, 0.5, 1.0],
+        [0.5, 0.25, 1.0, 1.0],
     ))
     .unwrap();
     doc["images"] = json!([{"uri": "base.png"}]);
@@ -260,9 +262,10 @@ fn gltf_vertex_colours_multiply_the_base_colour() {
     let t = color_texture(&l.scene.materials[colored.material]);
     assert!(matches!(&t.source, TextureSource::Image(p) if p.ends_with("base.png")));
     assert!(t.times_vertex_color);
-    assert!((t.scale - 0.5).abs() < 1e-6, "scale {}", t.scale);
+    assert_eq!((t.tint, t.scale), (Vec3::new(0.5, 0.25, 1.0), 1.0));
     let t = color_texture(&l.scene.materials[plain.material]);
     assert!(!t.times_vertex_color);
+    assert_eq!(t.tint, Vec3::new(0.5, 0.25, 1.0));
 }
 
 fn mitsuba_scene(attribute: &str) -> Loaded {

@@ -133,7 +133,6 @@ impl MetallicRoughness {
         transmission: f32,
         ior: f32,
     ) -> Self {
-        let unit = |v: f32| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
         Self {
             base_color: base_color.to_array().map(unit).into(),
             metallic: unit(metallic),
@@ -172,6 +171,25 @@ impl MetallicRoughness {
             coat: ClearCoat::new(factor, roughness),
             ..self
         }
+    }
+
+    /// The same material with another transmitted fraction (a texture),
+    /// clamped as in [`MetallicRoughness::new`].
+    pub fn with_transmission(self, transmission: f32) -> Self {
+        Self {
+            transmission: unit(transmission),
+            ..self
+        }
+    }
+
+    /// The transmitted fraction of the dielectric part.
+    pub fn transmission(&self) -> f32 {
+        self.transmission
+    }
+
+    /// The dielectric specular layer's strength and F0 tint.
+    pub fn specular(&self) -> (f32, Vec3) {
+        (self.specular, self.specular_color)
     }
 
     /// The clear coat's strength and perceptual roughness.
@@ -492,5 +510,14 @@ fn to_upper(wo: Vec3, wi: Vec3) -> (Vec3, Vec3) {
         (Vec3::new(wo.x, wo.y, -wo.z), Vec3::new(wi.x, wi.y, -wi.z))
     } else {
         (wo, wi)
+    }
+}
+
+/// `v` clamped to [0, 1], NaN to 0: the range of the model's fractions.
+fn unit(v: f32) -> f32 {
+    if v.is_nan() {
+        0.0
+    } else {
+        v.clamp(0.0, 1.0)
     }
 }

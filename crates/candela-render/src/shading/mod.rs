@@ -2,7 +2,8 @@
 //! textured BSDF, the shading frame (normal maps), the emitted radiance,
 //! and whether the surface is there at all (opacity cut-outs).
 //!
-//! - [`textures`]: every texture slot read at the hit's `uv`.
+//! - [`textures`]: every texture slot read at the hit's `uv`
+//!   ([`metallic_roughness_slots`]: those only the glTF model reads).
 //! - [`normal_map`]: tangent-space normal maps, bump maps, the
 //!   shading-frame rules that never let a sampled direction leak through
 //!   the geometric surface (mirror or bend a mapped normal that faces away
@@ -21,9 +22,11 @@ pub mod textures;
 mod blend_material_tests;
 #[cfg(test)]
 mod leak_tests;
+pub mod metallic_roughness_slots;
 #[cfg(test)]
 mod sides_tests;
 
+pub use metallic_roughness_slots::MetallicRoughnessSlots;
 pub use normal_map::Terminator;
 pub use textures::MaterialTextures;
 

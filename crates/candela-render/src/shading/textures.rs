@@ -1,5 +1,6 @@
 //! A material's texture slots at a hit: every parameter the description can
-//! texture (colour, roughness, metalness, normal map, emission, opacity) is
+//! texture (colour, roughness, metalness, normal map, emission, opacity,
+//! the glTF model's coat, transmission and specular layer) is
 //! read at the hit (its `uv` and vertex colour, a [`TexturePoint`]) and
 //! put into the BSDF it belongs to.
 //!
@@ -10,31 +11,39 @@
 //! | colour | diffuse albedo; mirror reflectance; glass, refraction, thin and rough glass transmittance (the tint); smooth and rough plastic base; glTF and principled base colour; a smooth or rough conductor's normal-incidence reflectance F0 (η = 1, k = 2√(F0/(1−F0)), exact for F0) |
 //! | roughness (R, or the slot's channel) | rough conductor and rough glass α; a smooth conductor becomes a Beckmann rough conductor of α = value (as Mitsuba's `roughconductor` default); smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF and principled (perceptual) roughness |
 //! | metalness (B by default, glTF's channel) | glTF and principled metalness |
-//! | clear coat, clear coat roughness (R, or the slot's channel: glTF's are R and G) | the glTF model's coat strength and coat roughness |
+//! | clear coat, clear coat roughness (R, or the slot's channel: glTF's are R and G) | the glTF model's coat strength and coat roughness (`metallic_roughness_slots.rs`, as the next three) |
+//! | transmission (R, or the slot's channel) | the glTF model's transmitted fraction |
+//! | specular strength (alpha, glTF's channel, or the slot's) | the glTF model's specular layer strength |
+//! | specular colour | the glTF model's specular F0 tint (not clamped to 1: the model caps F0 itself, and glTF lets the factor exceed 1) |
 //! | normal map, bump map | the shading normal (`normal_map.rs`) |
 //! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
 //! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
 //! | blend weight (luminance, clamped to [0, 1]) | a blend's weight (`Material::bsdf_at`, which mixes the parts, each with its own slots) |
 //!
-//! Colours are clamped to [0, 1] and one-value parameters to their ranges
-//! after scaling, so a texture never creates energy. A slot a BSDF has no
-//! parameter for (roughness on a mirror, thin glass or smooth plastic,
-//! metalness outside the glTF and principled models, a clear coat's slots outside the glTF
-//! model, colour or roughness on a blend (its parts
-//! have theirs), a blend weight on anything but a blend, any of colour/roughness/metalness on a
+//! A colour slot's value is texel × tint × scale per channel, a one-value
+//! slot's the channel × scale ([`SlotTexture`]). Colours are clamped to
+//! [0, 1] (but the specular tint, above) and one-value parameters to their
+//! ranges after scaling, so a texture never creates energy. A slot a BSDF
+//! has no parameter for (roughness on a mirror, thin glass or smooth
+//! plastic, metalness outside the glTF and principled models, the clear
+//! coat's, transmission's and specular layer's slots outside the glTF
+//! model, colour or roughness on a blend (its parts have theirs), a blend
+//! weight on anything but a blend, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
+use super::metallic_roughness_slots::MetallicRoughnessSlots;
 use crate::bsdf::{Bsdf, Masking, MicrofacetDistribution};
 use crate::texture::{SlotTexture, TextureCache, TexturePoint};
 use candela_scene::{PerturbationRules, TextureSlot, TextureSlots};
 use glam::Vec3;
 
 /// The channel one-value slots read when the description names none.
-const DEFAULT_CHANNEL: u8 = 0;
+pub(super) const DEFAULT_CHANNEL: u8 = 0;
 /// glTF and most packers keep metalness in blue.
 const METALNESS_CHANNEL: u8 = 2;
-/// Alpha: opacity's default when the image has it.
-const ALPHA_CHANNEL: u8 = 3;
+/// Alpha: opacity's default when the image has it, and the specular
+/// strength's (glTF's channel; 1 where the image has no alpha).
+pub(super) const ALPHA_CHANNEL: u8 = 3;
 
 /// The textures of one material, read once at scene build.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -56,10 +65,10 @@ pub struct MaterialTextures {
     /// A blend's weight (read by [`crate::material::Material::bsdf_at`],
     /// which mixes the parts).
     pub weight: Option<SlotTexture>,
-    /// The glTF clear coat's strength.
-    pub clearcoat: Option<SlotTexture>,
-    /// The glTF clear coat's perceptual roughness.
-    pub clearcoat_roughness: Option<SlotTexture>,
+    /// The glTF model's clear coat, transmission and specular layer
+    /// slots, boxed (see [`MetallicRoughnessSlots`]); `None` when all are
+    /// empty.
+    pub metallic_roughness: Option<Box<MetallicRoughnessSlots>>,
     /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
     /// fraction.
     pub opacity_cutoff: Option<f32>,
@@ -90,12 +99,14 @@ impl MaterialTextures {
                 unusable.push(slot);
                 continue;
             }
-            let loaded = SlotTexture::load(t, cache);
-            *textures.slot_mut(slot) = loaded;
+            if let Some(loaded) = SlotTexture::load(t, cache) {
+                *textures.slot_mut(slot) = Some(loaded);
+            }
         }
         (textures, unusable)
     }
 
+    /// The field of `slot` (a glTF extension's slot opens the box).
     fn slot_mut(&mut self, slot: TextureSlot) -> &mut Option<SlotTexture> {
         match slot {
             TextureSlot::Color => &mut self.color,
@@ -106,19 +117,27 @@ impl MaterialTextures {
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
             TextureSlot::Weight => &mut self.weight,
-            TextureSlot::Clearcoat => &mut self.clearcoat,
-            TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
+            TextureSlot::Clearcoat => &mut self.layers().clearcoat,
+            TextureSlot::ClearcoatRoughness => &mut self.layers().clearcoat_roughness,
+            TextureSlot::Transmission => &mut self.layers().transmission,
+            TextureSlot::Specular => &mut self.layers().specular,
+            TextureSlot::SpecularColor => &mut self.layers().specular_color,
         }
     }
 
-    /// Whether any slot that changes the BSDF is filled.
+    /// The glTF model's extension slots, boxed on first use.
+    fn layers(&mut self) -> &mut MetallicRoughnessSlots {
+        self.metallic_roughness.get_or_insert_with(Box::default)
+    }
+
+    /// Whether any slot that changes the BSDF is filled. Asked per path
+    /// vertex: four tests, whatever the glTF model's extensions add.
     #[inline]
     pub(crate) fn textures_bsdf(&self) -> bool {
         self.color.is_some()
             || self.roughness.is_some()
             || self.metalness.is_some()
-            || self.clearcoat.is_some()
-            || self.clearcoat_roughness.is_some()
+            || self.metallic_roughness.is_some()
     }
 
     /// `bsdf` with its textured parameters read at `at`.
@@ -212,17 +231,11 @@ impl MaterialTextures {
                     .metalness
                     .as_ref()
                     .map_or(metallic, |t| t.value(at, METALNESS_CHANNEL));
-                let (coat, coat_roughness) = m.clearcoat();
-                let value = |t: &Option<SlotTexture>, v: f32| {
-                    t.as_ref().map_or(v, |t| t.value(at, DEFAULT_CHANNEL))
-                };
-                Bsdf::MetallicRoughness(
-                    m.with(color.unwrap_or(base), metallic, roughness.unwrap_or(rough))
-                        .with_clearcoat(
-                            value(&self.clearcoat, coat),
-                            value(&self.clearcoat_roughness, coat_roughness),
-                        ),
-                )
+                let m = m.with(color.unwrap_or(base), metallic, roughness.unwrap_or(rough));
+                Bsdf::MetallicRoughness(match &self.metallic_roughness {
+                    Some(layers) => layers.apply(m, at),
+                    None => m,
+                })
             }
             Bsdf::Principled(p) => {
                 let q = p.parameters();
@@ -288,9 +301,14 @@ fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
         // A blend's own colour and roughness: its parts have theirs.
         (TextureSlot::Color | TextureSlot::Roughness, Some(Bsdf::Blend(_))) => false,
         (TextureSlot::Color | TextureSlot::Normal | TextureSlot::Bump, Some(_)) => true,
-        (TextureSlot::Clearcoat | TextureSlot::ClearcoatRoughness, Some(b)) => {
-            matches!(b, Bsdf::MetallicRoughness(_))
-        }
+        (
+            TextureSlot::Clearcoat
+            | TextureSlot::ClearcoatRoughness
+            | TextureSlot::Transmission
+            | TextureSlot::Specular
+            | TextureSlot::SpecularColor,
+            Some(b),
+        ) => matches!(b, Bsdf::MetallicRoughness(_)),
         (TextureSlot::Metalness, Some(b)) => {
             matches!(b, Bsdf::MetallicRoughness(_) | Bsdf::Principled(_))
         }

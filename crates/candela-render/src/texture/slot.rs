@@ -1,6 +1,7 @@
 //! A texture in a material's slot: its source (an image or a checkerboard),
-//! the slot's scale, for one-value slots the channel that holds the value,
-//! the image filter, and the uv transform. Every slot (colour, roughness,
+//! the slot's factors (a scale on every read, a tint on colour reads), for
+//! one-value slots the channel that holds the value, the image filter, and
+//! the uv transform. Every slot (colour, roughness,
 //! metalness, normal and bump maps, emission, opacity) reads through the
 //! methods here, so each gets every source, the filter and the transform
 //! alike: the surface's uv is transformed first, then the source is read
@@ -40,6 +41,9 @@ pub struct SlotTexture {
     pub source: SlotSource,
     /// Factor on every value read.
     pub scale: f32,
+    /// Factor per channel on colour reads ([`SlotTexture::color`]); one-value
+    /// reads ([`SlotTexture::value`], [`SlotTexture::gradient`]) ignore it.
+    pub tint: Vec3,
     /// The channel of a one-value slot (0 R, 1 G, 2 B, 3 alpha); `None`
     /// reads the slot's default (see [`SlotTexture::value`]).
     pub channel: Option<u8>,
@@ -55,11 +59,13 @@ pub struct SlotTexture {
 }
 
 impl SlotTexture {
-    /// `image`, unscaled, bilinear, repeating, at the surface's own uv.
+    /// `image`, unscaled and untinted, bilinear, repeating, at the
+    /// surface's own uv.
     pub fn of_image(image: Arc<ImageTexture>) -> Self {
         Self {
             source: SlotSource::Image(image),
             scale: 1.0,
+            tint: Vec3::ONE,
             channel: None,
             filter: TextureFilter::Bilinear,
             wrap: TextureWrap::REPEAT,
@@ -82,6 +88,7 @@ impl SlotTexture {
         Some(Self {
             source,
             scale: t.scale,
+            tint: t.tint,
             channel: t.channel,
             filter: t.filter,
             wrap: t.wrap,
@@ -107,8 +114,8 @@ impl SlotTexture {
         }
     }
 
-    /// The colour at a point (its uv, or its vertex colour), unscaled (a
-    /// normal map's encoded direction).
+    /// The colour at a point (its uv, or its vertex colour), without the
+    /// factors (a normal map's encoded direction).
     #[inline]
     pub fn rgb(&self, at: impl Into<TexturePoint>) -> Vec3 {
         let at = at.into();
@@ -133,18 +140,34 @@ impl SlotTexture {
         }
     }
 
-    /// The colour at a point, times the scale. A slot that names a
-    /// channel reads that channel as grey.
+    /// The colour at a point times the tint and the scale, per channel. A
+    /// slot that names a channel reads that channel as grey (then tinted).
+    /// With the default tint the product is bit for bit the scaled colour
+    /// alone (1 × scale is exact).
     pub fn color(&self, at: impl Into<TexturePoint>) -> Vec3 {
         let at = at.into();
-        match self.channel {
-            Some(c) => Vec3::splat(self.channel_at(at, c) * self.scale),
-            None => self.rgb(at) * self.scale,
-        }
+        let texel = match self.channel {
+            Some(c) => Vec3::splat(self.channel_at(at, c)),
+            None => self.rgb(at),
+        };
+        texel * self.color_factor()
     }
 
-    /// The value at a point, times the scale: the named channel, else
-    /// `default_channel`.
+    /// The mean of [`SlotTexture::color`] over one period (see
+    /// [`SlotTexture::mean`]), negative channels at 0: an emission
+    /// texture's power.
+    pub fn mean_color(&self) -> Vec3 {
+        (self.mean() * self.color_factor()).max(Vec3::ZERO)
+    }
+
+    /// What a colour read is multiplied by: tint × scale.
+    #[inline]
+    fn color_factor(&self) -> Vec3 {
+        self.tint * self.scale
+    }
+
+    /// The value at a point, times the scale (not the tint): the named
+    /// channel, else `default_channel`.
     pub fn value(&self, at: impl Into<TexturePoint>, default_channel: u8) -> f32 {
         self.channel_at(at.into(), self.channel.unwrap_or(default_channel)) * self.scale
     }

@@ -1,4 +1,5 @@
-//! A slot's reads checked analytically: the checkerboard's cells, the uv
+//! A slot's reads checked analytically: the checkerboard's cells, the factors
+//! (tint on colour reads, scale on all), the uv
 //! transform's effect on an image (repeats, shifts, order of composition),
 //! nearest texels, and bump gradients carried through the transform.
 
@@ -298,4 +299,67 @@ fn the_uv_transform_applies_before_the_wrap() {
             WrapMode::Mirror | WrapMode::Repeat => assert!(got.x > 0.0 && got.z > 0.0, "{got}"),
         }
     }
+}
+
+#[test]
+fn a_colour_read_is_texel_times_tint_times_scale_and_a_value_read_ignores_the_tint() {
+    let tint = Vec3::new(1.0, 0.5, 0.25);
+    let plain = SlotTexture::of_image(varied());
+    let tinted = SlotTexture {
+        tint,
+        scale: 0.8,
+        ..plain.clone()
+    };
+    let scaled = SlotTexture {
+        scale: 0.8,
+        ..plain.clone()
+    };
+    for uv in [Vec2::new(0.13, 0.41), Vec2::new(0.62, 0.77)] {
+        let texel = plain.color(uv);
+        assert!(texel.x != texel.y && texel.y != texel.z, "a coloured texel");
+        let expected = texel * tint * 0.8;
+        assert!(
+            (tinted.color(uv) - expected).abs().max_element() < 1e-6,
+            "{} vs {expected} at {uv}",
+            tinted.color(uv)
+        );
+        // One-value reads (and their slope) see the scale alone.
+        for c in 0..4u8 {
+            assert_eq!(tinted.value(uv, c), scaled.value(uv, c), "{uv} {c}");
+            assert_eq!(tinted.gradient(uv, c), scaled.gradient(uv, c), "{uv} {c}");
+        }
+        // The raw colour (a normal map's direction) has no factor at all.
+        assert_eq!(tinted.rgb(uv), plain.rgb(uv));
+    }
+    // The mean colour (an emitter's power) carries both factors.
+    let mean = tinted.mean_color();
+    assert!(
+        (mean - plain.mean() * tint * 0.8).abs().max_element() < 1e-6,
+        "{mean}"
+    );
+    // Untinted, a colour read is exactly the scaled texel.
+    let uv = Vec2::new(0.3, 0.6);
+    assert_eq!(scaled.color(uv), plain.rgb(uv) * 0.8);
+}
+
+#[test]
+fn a_tinted_vertex_colour_is_the_factor_times_the_colour_per_channel() {
+    // glTF's baseColorFactor × COLOR_0 without a texture, and with one.
+    let tint = Vec3::new(0.9, 0.5, 0.1);
+    let color = Vec3::new(0.2, 0.6, 0.8);
+    let vertex = SlotTexture {
+        source: SlotSource::VertexColor,
+        tint,
+        ..SlotTexture::of_image(halves())
+    };
+    let textured = SlotTexture {
+        tint,
+        times_vertex_color: true,
+        ..nearest(halves(), Affine2::IDENTITY)
+    };
+    let uv = Vec2::new(0.25, 0.5); // the red half
+    let at = TexturePoint::new(uv, color);
+    assert_eq!(vertex.color(at), tint * color);
+    assert_eq!(vertex.value(at, 1), color.y, "one value: no tint");
+    assert_eq!(textured.color(at), RED * color * tint);
 }

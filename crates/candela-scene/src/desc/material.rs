@@ -96,11 +96,21 @@ pub enum TextureSlot {
     /// The clear coat's perceptual roughness in [0, 1]
     /// (`clearcoatRoughnessTexture`, green in glTF files).
     ClearcoatRoughness,
+    /// The transmitted fraction of the metallic-roughness model's
+    /// dielectric part in [0, 1] (`KHR_materials_transmission`'s
+    /// `transmissionTexture`, red).
+    Transmission,
+    /// The strength of the metallic-roughness model's dielectric specular
+    /// layer in [0, 1] (`KHR_materials_specular`'s `specularTexture`,
+    /// alpha in glTF files).
+    Specular,
+    /// The tint of that layer's F0, a colour (`specularColorTexture`, sRGB).
+    SpecularColor,
 }
 
 impl TextureSlot {
     /// Every slot, in declaration order.
-    pub const ALL: [TextureSlot; 10] = [
+    pub const ALL: [TextureSlot; 13] = [
         TextureSlot::Color,
         TextureSlot::Roughness,
         TextureSlot::Metalness,
@@ -111,6 +121,9 @@ impl TextureSlot {
         TextureSlot::Weight,
         TextureSlot::Clearcoat,
         TextureSlot::ClearcoatRoughness,
+        TextureSlot::Transmission,
+        TextureSlot::Specular,
+        TextureSlot::SpecularColor,
     ];
 
     /// The slot's name in messages.
@@ -126,6 +139,9 @@ impl TextureSlot {
             TextureSlot::Weight => "blend weight",
             TextureSlot::Clearcoat => "clear coat",
             TextureSlot::ClearcoatRoughness => "clear coat roughness",
+            TextureSlot::Transmission => "transmission",
+            TextureSlot::Specular => "specular strength",
+            TextureSlot::SpecularColor => "specular colour",
         }
     }
 
@@ -133,7 +149,9 @@ impl TextureSlot {
     /// sRGB for colours, linear for data.
     pub fn default_color_space(self) -> ColorSpace {
         match self {
-            TextureSlot::Color | TextureSlot::Emission => ColorSpace::Srgb,
+            TextureSlot::Color | TextureSlot::Emission | TextureSlot::SpecularColor => {
+                ColorSpace::Srgb
+            }
             _ => ColorSpace::Linear,
         }
     }
@@ -162,6 +180,12 @@ pub struct TextureSlots {
     pub clearcoat: Option<TextureRef>,
     /// The glTF clear coat's roughness.
     pub clearcoat_roughness: Option<TextureRef>,
+    /// The glTF model's transmitted fraction.
+    pub transmission: Option<TextureRef>,
+    /// The glTF model's specular strength.
+    pub specular: Option<TextureRef>,
+    /// The glTF model's specular tint.
+    pub specular_color: Option<TextureRef>,
     /// How the opacity slot's value is read: `None` as a coverage fraction
     /// (a point of opacity a is kept with probability a, glTF `BLEND`),
     /// `Some(c)` as a mask (opaque where the value is at least c, cut out
@@ -207,6 +231,9 @@ impl TextureSlots {
             TextureSlot::Weight => &self.weight,
             TextureSlot::Clearcoat => &self.clearcoat,
             TextureSlot::ClearcoatRoughness => &self.clearcoat_roughness,
+            TextureSlot::Transmission => &self.transmission,
+            TextureSlot::Specular => &self.specular,
+            TextureSlot::SpecularColor => &self.specular_color,
         }
     }
 
@@ -222,6 +249,9 @@ impl TextureSlots {
             TextureSlot::Weight => &mut self.weight,
             TextureSlot::Clearcoat => &mut self.clearcoat,
             TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
+            TextureSlot::Transmission => &mut self.transmission,
+            TextureSlot::Specular => &mut self.specular,
+            TextureSlot::SpecularColor => &mut self.specular_color,
         }
     }
 }

@@ -192,8 +192,14 @@ impl UvTransform {
     }
 }
 
-/// A texture in a material slot: its source, how to read its values, a
-/// factor applied to them, and where on the surface it is read.
+/// A texture in a material slot: its source, how to read its values, the
+/// factors applied to them, and where on the surface it is read.
+///
+/// Two factors, because a slot reads either a colour or one value: a
+/// colour read is texel × `tint` × `scale` per channel (glTF's
+/// `baseColorFactor` times its texture, exactly), a one-value read
+/// (roughness, metalness, opacity, a bump's height, a normal map's
+/// strength) is the channel × `scale`, the tint unread.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureRef {
     /// An image or a procedural pattern.
@@ -201,8 +207,12 @@ pub struct TextureRef {
     /// How an image's stored values become linear ones (procedural colours
     /// are linear already).
     pub color_space: ColorSpace,
-    /// Multiplies every (linear) value read.
+    /// Multiplies every (linear) value read, colour or one value.
     pub scale: f32,
+    /// Multiplies a colour read per channel (linear RGB; white by
+    /// default): a colour factor on a colour texture, kept whole rather
+    /// than reduced to one number. One-value reads ignore it.
+    pub tint: Vec3,
     /// For a one-value slot (roughness, metalness, opacity): the channel
     /// holding it (0 R, 1 G, 2 B, 3 A), as glTF packs roughness in G and
     /// metalness in B of one image. `None`: the renderer's default.
@@ -219,8 +229,8 @@ pub struct TextureRef {
 }
 
 impl TextureRef {
-    /// The image at `path`, read in `color_space`, unscaled, bilinear,
-    /// repeating, at the surface's own uv.
+    /// The image at `path`, read in `color_space`, unscaled and untinted,
+    /// bilinear, repeating, at the surface's own uv.
     pub fn new(path: impl Into<PathBuf>, color_space: ColorSpace) -> Self {
         Self::of(TextureSource::Image(path.into()), color_space)
     }
@@ -234,7 +244,7 @@ impl TextureRef {
         )
     }
 
-    /// The mesh's vertex colours, unscaled.
+    /// The mesh's vertex colours, unscaled and untinted.
     pub fn vertex_color() -> Self {
         Self::of(TextureSource::VertexColor, ColorSpace::Linear)
     }
@@ -244,6 +254,7 @@ impl TextureRef {
             source,
             color_space,
             scale: 1.0,
+            tint: Vec3::ONE,
             channel: None,
             filter: TextureFilter::default(),
             wrap: TextureWrap::REPEAT,

@@ -1,11 +1,12 @@
 //! glTF metallic-roughness materials, read as what they are:
 //! [`BsdfDesc::MetallicRoughness`] (the renderer's glTF BSDF: Lambert base,
 //! GGX specular with Schlick Fresnel, mixed by metalness), with
-//! `KHR_materials_transmission` (`transmissionFactor`),
-//! `KHR_materials_ior` (1.5 by default) and `KHR_materials_specular`
-//! (`specularFactor`, `specularColorFactor`; its two textures are reported
-//! and not read), `KHR_materials_clearcoat` (`clearcoat.rs`), and every
-//! texture in its slot.
+//! `KHR_materials_transmission` (`transmissionFactor`, `transmissionTexture`
+//! in red), `KHR_materials_ior` (1.5 by default) and
+//! `KHR_materials_specular` (`specularFactor` with `specularTexture` in
+//! alpha, `specularColorFactor` with the sRGB `specularColorTexture`),
+//! `KHR_materials_clearcoat` (`clearcoat.rs`), and every texture in its
+//! slot.
 //!
 //! `KHR_materials_volume` fills the inside of a mesh whose `thicknessFactor`
 //! is above 0 with an absorbing medium ([`volume_medium`]).
@@ -13,9 +14,11 @@
 //! A primitive with vertex colours (`COLOR_0`) multiplies its base colour
 //! by them ([`times_vertex_colors`]).
 //!
-//! A factor that multiplies a texture becomes the texture's scale; the
-//! slot's scale is one number, so a non-grey colour factor is averaged (and
-//! reported). Alpha: `MASK` puts the base colour's alpha in the opacity
+//! A factor multiplies its texture as glTF says, factor × texel ([`Factor`]):
+//! a colour factor (`baseColorFactor`, `emissiveFactor` ×
+//! `emissive_strength`, `specularColorFactor`) per channel, as the
+//! texture's tint, a one-value factor as its scale on the channel holding
+//! the value. Alpha: `MASK` puts the base colour's alpha in the opacity
 //! slot with `alphaCutoff` (0.5 by default) as the slot's cutoff; `BLEND`
 //! puts it there as a coverage fraction (stochastic opacity: a point of
 //! alpha a is kept with probability a, which averages to the blended look
@@ -80,34 +83,23 @@ pub(super) fn read_material(
     let metal = pbr.metallic_factor();
     let rough = pbr.roughness_factor();
     let transmission = m.transmission();
-    if transmission
-        .as_ref()
-        .is_some_and(|t| t.transmission_texture().is_some())
-    {
-        ctx.warn(
-            "transmissionTexture",
-            "the transmission texture is not read; its factor is used",
-        )?;
-    }
     let specular = m.specular();
-    if specular
-        .as_ref()
-        .is_some_and(|s| s.specular_texture().is_some() || s.specular_color_texture().is_some())
-    {
-        ctx.warn(
-            "specularTexture",
-            "the KHR_materials_specular textures are not read; their factors are used",
-        )?;
-    }
     let coat = read_clearcoat(ctx, doc, m)?;
+    let transmission_factor = transmission
+        .as_ref()
+        .map_or(0.0, |t| t.transmission_factor());
+    let specular_factor = specular.as_ref().map_or(1.0, |s| s.specular_factor());
+    let specular_color = specular
+        .as_ref()
+        .map_or(Vec3::ONE, |s| Vec3::from(s.specular_color_factor()));
     let bsdf = BsdfDesc::MetallicRoughness {
         base_color: base,
         metallic: metal,
         roughness: rough,
-        transmission: transmission.map_or(0.0, |t| t.transmission_factor()),
+        transmission: transmission_factor,
         ior: m.ior().unwrap_or(1.5),
-        specular: specular.as_ref().map_or(1.0, |s| s.specular_factor()),
-        specular_color: specular.map_or(Vec3::ONE, |s| Vec3::from(s.specular_color_factor())),
+        specular: specular_factor,
+        specular_color,
         clearcoat: coat.as_ref().map_or(0.0, |c| c.factor),
         clearcoat_roughness: coat.as_ref().map_or(0.0, |c| c.roughness),
     };
@@ -129,61 +121,72 @@ pub(super) fn read_material(
     let mut slot = |slot: TextureSlot,
                     info: Option<TexInfo>,
                     space: ColorSpace,
-                    scale: f32,
-                    channel: Option<u8>|
+                    factor: Factor|
      -> Result<(), LoadError> {
         let Some((tex, coord, uv)) = info else {
             return Ok(());
         };
         if let Some(mut t) = texture_ref(ctx, buffers, &tex, coord, space)? {
-            t.scale = scale;
-            t.channel = channel;
+            factor.apply_to(&mut t);
             t.uv = uv;
             desc.textures.set(slot, t);
         }
         Ok(())
     };
     let base_tex = info(pbr.base_color_texture());
-    let color_scale = match base_tex {
-        Some(_) => grey(ctx, "baseColorFactor", base)?,
-        None => 1.0,
-    };
     slot(
         TextureSlot::Color,
         base_tex.clone(),
         ColorSpace::Srgb,
-        color_scale,
-        None,
+        Factor::Color(base),
     )?;
     let mr = info(pbr.metallic_roughness_texture());
     slot(
         TextureSlot::Roughness,
         mr.clone(),
         ColorSpace::Linear,
-        rough,
-        Some(1),
+        Factor::Channel(rough, 1),
     )?;
     slot(
         TextureSlot::Metalness,
         mr,
         ColorSpace::Linear,
-        metal,
-        Some(2),
+        Factor::Channel(metal, 2),
     )?;
+    if let Some(t) = &transmission {
+        slot(
+            TextureSlot::Transmission,
+            info(t.transmission_texture()),
+            ColorSpace::Linear,
+            Factor::Channel(transmission_factor, 0),
+        )?;
+    }
+    if let Some(s) = &specular {
+        slot(
+            TextureSlot::Specular,
+            info(s.specular_texture()),
+            ColorSpace::Linear,
+            Factor::Channel(specular_factor, 3),
+        )?;
+        slot(
+            TextureSlot::SpecularColor,
+            info(s.specular_color_texture()),
+            ColorSpace::Srgb,
+            Factor::Color(specular_color),
+        )?;
+    }
     if let Some(c) = coat {
         slot(
             TextureSlot::Clearcoat,
             c.texture,
             ColorSpace::Linear,
-            c.factor,
-            Some(0),
+            Factor::Channel(c.factor, 0),
         )?;
         slot(
             TextureSlot::ClearcoatRoughness,
             c.roughness_texture,
             ColorSpace::Linear,
-            c.roughness,
-            Some(1),
+            Factor::Channel(c.roughness, 1),
         )?;
     }
     let normal = m.normal_texture();
@@ -195,18 +198,18 @@ pub(super) fn read_material(
         }
         None => None,
     };
-    slot(TextureSlot::Normal, normal, ColorSpace::Linear, scale, None)?;
-    let emissive_tex = info(m.emissive_texture());
-    if emissive_tex.is_some() {
-        let scale = grey(ctx, "emissiveFactor", Vec3::from(m.emissive_factor()))? * strength;
-        slot(
-            TextureSlot::Emission,
-            emissive_tex,
-            ColorSpace::Srgb,
-            scale,
-            None,
-        )?;
-    }
+    slot(
+        TextureSlot::Normal,
+        normal,
+        ColorSpace::Linear,
+        Factor::Strength(scale),
+    )?;
+    slot(
+        TextureSlot::Emission,
+        info(m.emissive_texture()),
+        ColorSpace::Srgb,
+        Factor::ColorTimes(Vec3::from(m.emissive_factor()), strength),
+    )?;
     match m.alpha_mode() {
         AlphaMode::Opaque => {}
         mode => {
@@ -215,8 +218,7 @@ pub(super) fn read_material(
                     TextureSlot::Opacity,
                     base_tex,
                     ColorSpace::Linear,
-                    alpha,
-                    Some(3),
+                    Factor::Channel(alpha, 3),
                 )?;
             } else if alpha < 1.0 {
                 desc.textures.opacity_constant = Some(alpha.clamp(0.0, 1.0));
@@ -227,6 +229,33 @@ pub(super) fn read_material(
         }
     }
     Ok(desc)
+}
+
+/// How a glTF factor multiplies the texture it goes with (glTF: factor ×
+/// texel, per channel for colours).
+#[derive(Clone, Copy)]
+enum Factor {
+    /// A colour factor: the texture's tint (`baseColorFactor`,
+    /// `specularColorFactor`).
+    Color(Vec3),
+    /// A colour factor times a number: `emissiveFactor` ×
+    /// `emissive_strength`, tint and scale.
+    ColorTimes(Vec3, f32),
+    /// A one-value factor and the channel holding the value.
+    Channel(f32, u8),
+    /// A normal map's `scale` (its strength; the map reads RGB).
+    Strength(f32),
+}
+
+impl Factor {
+    fn apply_to(self, t: &mut TextureRef) {
+        match self {
+            Factor::Color(tint) => t.tint = tint,
+            Factor::ColorTimes(tint, scale) => (t.tint, t.scale) = (tint, scale),
+            Factor::Channel(scale, channel) => (t.scale, t.channel) = (scale, Some(channel)),
+            Factor::Strength(scale) => t.scale = scale,
+        }
+    }
 }
 
 /// A texture reference's texture, UV set and uv transform.
@@ -296,14 +325,14 @@ pub(super) fn khr_texture_transform(
 }
 
 /// Makes `desc`'s base colour the product glTF defines for a primitive
-/// with `COLOR_0`: factor × texture × vertex colour. A base colour texture
-/// is multiplied by the vertex colour ([`TextureRef::times_vertex_color`]);
-/// without one the vertex colour becomes the texture, scaled by the factor
-/// (a coloured factor by its mean, reported, as on any texture).
-pub(super) fn times_vertex_colors(ctx: &Ctx, desc: &mut MaterialDesc) -> Result<(), LoadError> {
+/// with `COLOR_0`: factor × texture × vertex colour, per channel. A base
+/// colour texture is multiplied by the vertex colour
+/// ([`TextureRef::times_vertex_color`]), keeping its tint; without one the
+/// vertex colour becomes the texture, tinted by the factor.
+pub(super) fn times_vertex_colors(desc: &mut MaterialDesc) {
     if let Some(t) = &mut desc.textures.color {
         t.times_vertex_color = true;
-        return Ok(());
+        return;
     }
     let base = match desc.bsdf {
         BsdfDesc::MetallicRoughness { base_color, .. } => base_color,
@@ -311,19 +340,6 @@ pub(super) fn times_vertex_colors(ctx: &Ctx, desc: &mut MaterialDesc) -> Result<
         _ => Vec3::ONE,
     };
     let mut t = TextureRef::vertex_color();
-    t.scale = grey(ctx, "baseColorFactor", base)?;
+    t.tint = base;
     desc.textures.set(TextureSlot::Color, t);
-    Ok(())
-}
-
-/// The one number a texture slot's scale can hold for a colour factor: the
-/// factor itself when grey, else its mean (reported).
-fn grey(ctx: &Ctx, name: &str, factor: Vec3) -> Result<f32, LoadError> {
-    if factor.max_element() - factor.min_element() > 1e-6 {
-        ctx.warn(
-            name,
-            "a coloured factor on a texture is applied as its mean (texture scales are one number)",
-        )?;
-    }
-    Ok(factor.element_sum() / 3.0)
 }

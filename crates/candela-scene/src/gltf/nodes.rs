@@ -202,7 +202,7 @@ fn material_of(
         None => MaterialDesc::default_grey(),
     };
     if vertex_colored {
-        materials::times_vertex_colors(ctx, &mut desc)?;
+        materials::times_vertex_colors(&mut desc);
     }
     let scene = &mut walk.scene;
     scene.materials.push(desc);

@@ -66,6 +66,33 @@ pub fn gltf_text(patch: impl FnOnce(&mut Value)) -> Vec<u8> {
     serde_json::to_vec_pretty(&doc).expect("json")
 }
 
+/// The `.gltf` text of the document with `extensions` used, one material
+/// per entry of `materials`, each on its own primitive of the mesh, and two
+/// textures of (unreadable) PNG images: texture 0 embedded, texture 1
+/// `second texture.png` beside the file.
+pub fn with_materials(extensions: &[&str], materials: Value) -> Vec<u8> {
+    let png = data_uri(b"\x89PNG not really");
+    let n = materials.as_array().map_or(0, Vec::len);
+    gltf_text(|d| {
+        d["extensionsUsed"] = json!(extensions);
+        d["images"] = json!([
+            {"uri": png.replace("application/octet-stream", "image/png")},
+            {"uri": "second texture.png"}
+        ]);
+        d["textures"] = json!([{"source": 0}, {"source": 1}]);
+        d["materials"] = materials;
+        let first = d["meshes"][0]["primitives"][0].clone();
+        let primitives: Vec<Value> = (0..n)
+            .map(|i| {
+                let mut p = first.clone();
+                p["material"] = json!(i);
+                p
+            })
+            .collect();
+        d["meshes"][0]["primitives"] = json!(primitives);
+    })
+}
+
 /// A `.glb` of `doc` with `bin` as its BIN chunk.
 pub fn glb_of(doc: &Value, bin: &[u8]) -> Vec<u8> {
     candela_testkit::glb::glb_of(&serde_json::to_vec(doc).expect("json"), bin)
