@@ -198,3 +198,26 @@ fn metallic_roughness_white_furnace_stays_at_most_one() {
     let e = energy_albedo_by_sampling(&mr(Vec3::ONE, 0.0, 0.2, 0.0), Vec3::Z, 1.0, 40_000);
     assert!(e.mean.x > 0.95, "{:?}", e.mean);
 }
+
+#[test]
+fn a_white_dielectric_reflects_all_the_light_at_every_angle_and_roughness() {
+    // The base gets exactly what the specular layer leaves (its albedo E
+    // from `specular_albedo.rs`), so the sum is 1 up to the table's
+    // interpolation (a few thousandths) and the estimate's noise.
+    for roughness in [0.0f32, 0.3, 0.6, 1.0] {
+        for strength in [1.0f32, 0.5] {
+            for theta in [0.0f32, 45.0, 70.0, 85.0] {
+                let (s, c) = theta.to_radians().sin_cos();
+                let bsdf = specular(mr(Vec3::ONE, 0.0, roughness, 0.0), strength);
+                let e = energy_albedo_by_sampling(&bsdf, Vec3::new(s, 0.0, c), 1.0, 40_000);
+                let bound = 5.0 * e.std_error.max_element() + 6e-3;
+                assert!(
+                    (e.mean - Vec3::ONE).abs().max_element() < bound,
+                    "r={roughness} s={strength} θ={theta}: {:?} ± {:?}",
+                    e.mean,
+                    e.std_error
+                );
+            }
+        }
+    }
+}

@@ -80,6 +80,7 @@ mod rough_plastic;
 mod rough_plastic_tests;
 mod special;
 mod specular;
+mod specular_albedo;
 #[cfg(test)]
 mod specular_tests;
 #[cfg(test)]
