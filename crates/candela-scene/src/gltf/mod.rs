@@ -19,6 +19,7 @@ mod accessors;
 mod buffers;
 mod cameras;
 mod clearcoat;
+mod extension_textures;
 mod glb;
 mod lights;
 mod materials;
