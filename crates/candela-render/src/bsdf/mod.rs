@@ -78,6 +78,10 @@ mod rough_dielectric_tests;
 mod rough_plastic;
 #[cfg(test)]
 mod rough_plastic_tests;
+mod sheen;
+mod sheen_albedo;
+#[cfg(test)]
+mod sheen_tests;
 mod special;
 mod specular;
 #[cfg(test)]
