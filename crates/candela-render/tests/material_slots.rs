@@ -119,6 +119,8 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         specular_color: Vec3::ONE,
         clearcoat: 0.0,
         clearcoat_roughness: 0.0,
+        sheen_color: Vec3::ZERO,
+        sheen_roughness: 0.0,
     };
     let (_, unsupported) = Material::from_desc(&gltf, &mut cache);
     assert!(

@@ -11,6 +11,7 @@
 //! | roughness (R, or the slot's channel) | rough conductor and rough glass α; a smooth conductor becomes a Beckmann rough conductor of α = value (as Mitsuba's `roughconductor` default); smooth glass and refraction become Beckmann rough glass of α = value (CS184's convention); glTF and principled (perceptual) roughness |
 //! | metalness (B by default, glTF's channel) | glTF and principled metalness |
 //! | clear coat, clear coat roughness (R, or the slot's channel: glTF's are R and G) | the glTF model's coat strength and coat roughness |
+//! | sheen colour (RGB), sheen roughness (R, or the slot's channel: glTF's is alpha) | the glTF model's sheen colour and sheen roughness |
 //! | normal map, bump map | the shading normal (`normal_map.rs`) |
 //! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
 //! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
@@ -19,8 +20,8 @@
 //! Colours are clamped to [0, 1] and one-value parameters to their ranges
 //! after scaling, so a texture never creates energy. A slot a BSDF has no
 //! parameter for (roughness on a mirror, thin glass or smooth plastic,
-//! metalness outside the glTF and principled models, a clear coat's slots outside the glTF
-//! model, colour or roughness on a blend (its parts
+//! metalness outside the glTF and principled models, a clear coat's or a sheen's slots outside
+//! the glTF model, colour or roughness on a blend (its parts
 //! have theirs), a blend weight on anything but a blend, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
@@ -60,6 +61,10 @@ pub struct MaterialTextures {
     pub clearcoat: Option<SlotTexture>,
     /// The glTF clear coat's perceptual roughness.
     pub clearcoat_roughness: Option<SlotTexture>,
+    /// The glTF sheen's colour.
+    pub sheen_color: Option<SlotTexture>,
+    /// The glTF sheen's perceptual roughness.
+    pub sheen_roughness: Option<SlotTexture>,
     /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
     /// fraction.
     pub opacity_cutoff: Option<f32>,
@@ -108,6 +113,8 @@ impl MaterialTextures {
             TextureSlot::Weight => &mut self.weight,
             TextureSlot::Clearcoat => &mut self.clearcoat,
             TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
+            TextureSlot::SheenColor => &mut self.sheen_color,
+            TextureSlot::SheenRoughness => &mut self.sheen_roughness,
         }
     }
 
@@ -119,6 +126,8 @@ impl MaterialTextures {
             || self.metalness.is_some()
             || self.clearcoat.is_some()
             || self.clearcoat_roughness.is_some()
+            || self.sheen_color.is_some()
+            || self.sheen_roughness.is_some()
     }
 
     /// `bsdf` with its textured parameters read at `at`.
@@ -213,11 +222,14 @@ impl MaterialTextures {
                     .as_ref()
                     .map_or(metallic, |t| t.value(at, METALNESS_CHANNEL));
                 let (coat, coat_roughness) = m.clearcoat();
+                let (sheen, sheen_roughness) = m.sheen();
                 let value = |t: &Option<SlotTexture>, v: f32| {
                     t.as_ref().map_or(v, |t| t.value(at, DEFAULT_CHANNEL))
                 };
+                let sheen = self.sheen_color.as_ref().map_or(sheen, |t| t.color(at));
                 Bsdf::MetallicRoughness(
                     m.with(color.unwrap_or(base), metallic, roughness.unwrap_or(rough))
+                        .with_sheen(sheen, value(&self.sheen_roughness, sheen_roughness))
                         .with_clearcoat(
                             value(&self.clearcoat, coat),
                             value(&self.clearcoat_roughness, coat_roughness),
@@ -288,9 +300,13 @@ fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
         // A blend's own colour and roughness: its parts have theirs.
         (TextureSlot::Color | TextureSlot::Roughness, Some(Bsdf::Blend(_))) => false,
         (TextureSlot::Color | TextureSlot::Normal | TextureSlot::Bump, Some(_)) => true,
-        (TextureSlot::Clearcoat | TextureSlot::ClearcoatRoughness, Some(b)) => {
-            matches!(b, Bsdf::MetallicRoughness(_))
-        }
+        (
+            TextureSlot::Clearcoat
+            | TextureSlot::ClearcoatRoughness
+            | TextureSlot::SheenColor
+            | TextureSlot::SheenRoughness,
+            Some(b),
+        ) => matches!(b, Bsdf::MetallicRoughness(_)),
         (TextureSlot::Metalness, Some(b)) => {
             matches!(b, Bsdf::MetallicRoughness(_) | Bsdf::Principled(_))
         }

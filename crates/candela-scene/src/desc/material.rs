@@ -96,11 +96,17 @@ pub enum TextureSlot {
     /// The clear coat's perceptual roughness in [0, 1]
     /// (`clearcoatRoughnessTexture`, green in glTF files).
     ClearcoatRoughness,
+    /// The colour of the metallic-roughness model's sheen, per channel in
+    /// [0, 1] (`KHR_materials_sheen`'s `sheenColorTexture`, sRGB).
+    SheenColor,
+    /// The sheen's perceptual roughness in [0, 1]
+    /// (`sheenRoughnessTexture`, alpha in glTF files).
+    SheenRoughness,
 }
 
 impl TextureSlot {
     /// Every slot, in declaration order.
-    pub const ALL: [TextureSlot; 10] = [
+    pub const ALL: [TextureSlot; 12] = [
         TextureSlot::Color,
         TextureSlot::Roughness,
         TextureSlot::Metalness,
@@ -111,6 +117,8 @@ impl TextureSlot {
         TextureSlot::Weight,
         TextureSlot::Clearcoat,
         TextureSlot::ClearcoatRoughness,
+        TextureSlot::SheenColor,
+        TextureSlot::SheenRoughness,
     ];
 
     /// The slot's name in messages.
@@ -126,6 +134,8 @@ impl TextureSlot {
             TextureSlot::Weight => "blend weight",
             TextureSlot::Clearcoat => "clear coat",
             TextureSlot::ClearcoatRoughness => "clear coat roughness",
+            TextureSlot::SheenColor => "sheen colour",
+            TextureSlot::SheenRoughness => "sheen roughness",
         }
     }
 
@@ -133,7 +143,9 @@ impl TextureSlot {
     /// sRGB for colours, linear for data.
     pub fn default_color_space(self) -> ColorSpace {
         match self {
-            TextureSlot::Color | TextureSlot::Emission => ColorSpace::Srgb,
+            TextureSlot::Color | TextureSlot::Emission | TextureSlot::SheenColor => {
+                ColorSpace::Srgb
+            }
             _ => ColorSpace::Linear,
         }
     }
@@ -162,6 +174,10 @@ pub struct TextureSlots {
     pub clearcoat: Option<TextureRef>,
     /// The glTF clear coat's roughness.
     pub clearcoat_roughness: Option<TextureRef>,
+    /// The glTF sheen's colour.
+    pub sheen_color: Option<TextureRef>,
+    /// The glTF sheen's roughness.
+    pub sheen_roughness: Option<TextureRef>,
     /// How the opacity slot's value is read: `None` as a coverage fraction
     /// (a point of opacity a is kept with probability a, glTF `BLEND`),
     /// `Some(c)` as a mask (opaque where the value is at least c, cut out
@@ -207,6 +223,8 @@ impl TextureSlots {
             TextureSlot::Weight => &self.weight,
             TextureSlot::Clearcoat => &self.clearcoat,
             TextureSlot::ClearcoatRoughness => &self.clearcoat_roughness,
+            TextureSlot::SheenColor => &self.sheen_color,
+            TextureSlot::SheenRoughness => &self.sheen_roughness,
         }
     }
 
@@ -222,6 +240,8 @@ impl TextureSlots {
             TextureSlot::Weight => &mut self.weight,
             TextureSlot::Clearcoat => &mut self.clearcoat,
             TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
+            TextureSlot::SheenColor => &mut self.sheen_color,
+            TextureSlot::SheenRoughness => &mut self.sheen_roughness,
         }
     }
 }
@@ -338,7 +358,8 @@ pub enum BsdfDesc {
     /// The glTF 2.0 metallic-roughness model (Lambert base, GGX specular
     /// with Schlick Fresnel, mixed by metalness) with
     /// `KHR_materials_transmission`, `KHR_materials_ior` and
-    /// `KHR_materials_specular` and `KHR_materials_clearcoat`.
+    /// `KHR_materials_specular`, `KHR_materials_sheen` and
+    /// `KHR_materials_clearcoat` (the coat over the sheen over the rest).
     MetallicRoughness {
         /// Base colour (linear), per channel in [0, 1].
         base_color: Vec3,
@@ -362,6 +383,12 @@ pub enum BsdfDesc {
         /// The clear coat's perceptual roughness in [0, 1]
         /// (`clearcoatRoughnessFactor`, 0 by default: a mirror-smooth coat).
         clearcoat_roughness: f32,
+        /// Colour of the sheen, per channel in [0, 1] (`KHR_materials_sheen`'s
+        /// `sheenColorFactor`, black by default: no sheen).
+        sheen_color: Vec3,
+        /// The sheen's perceptual roughness in [0, 1]
+        /// (`sheenRoughnessFactor`, 0 by default).
+        sheen_roughness: f32,
     },
     /// The principled BSDF (Burley 2012/2015) as Mitsuba 3's `principled`
     /// defines it.

@@ -4,8 +4,10 @@
 //! `KHR_materials_transmission` (`transmissionFactor`),
 //! `KHR_materials_ior` (1.5 by default) and `KHR_materials_specular`
 //! (`specularFactor`, `specularColorFactor`; its two textures are reported
-//! and not read), `KHR_materials_clearcoat` (`clearcoat.rs`), and every
-//! texture in its slot.
+//! and not read), `KHR_materials_sheen` (`sheen.rs`: a sheen colour and
+//! roughness, the colour texture's RGB in sRGB, the roughness texture's
+//! alpha), `KHR_materials_clearcoat` (`clearcoat.rs`), and every texture in
+//! its slot.
 //!
 //! `KHR_materials_volume` fills the inside of a mesh whose `thicknessFactor`
 //! is above 0 with an absorbing medium ([`volume_medium`]).
@@ -28,6 +30,7 @@
 
 use super::accessors::Buffers;
 use super::clearcoat::read_clearcoat;
+use super::sheen::read_sheen;
 use super::textures::texture_ref;
 use super::Ctx;
 use crate::desc::{
@@ -100,6 +103,7 @@ pub(super) fn read_material(
         )?;
     }
     let coat = read_clearcoat(ctx, doc, m)?;
+    let sheen = read_sheen(ctx, doc, m)?;
     let bsdf = BsdfDesc::MetallicRoughness {
         base_color: base,
         metallic: metal,
@@ -110,6 +114,8 @@ pub(super) fn read_material(
         specular_color: specular.map_or(Vec3::ONE, |s| Vec3::from(s.specular_color_factor())),
         clearcoat: coat.as_ref().map_or(0.0, |c| c.factor),
         clearcoat_roughness: coat.as_ref().map_or(0.0, |c| c.roughness),
+        sheen_color: sheen.as_ref().map_or(Vec3::ZERO, |s| s.color),
+        sheen_roughness: sheen.as_ref().map_or(0.0, |s| s.roughness),
     };
     let strength = m.emissive_strength().unwrap_or(1.0);
     let emissive = Vec3::from(m.emissive_factor()) * strength;
@@ -184,6 +190,26 @@ pub(super) fn read_material(
             ColorSpace::Linear,
             c.roughness,
             Some(1),
+        )?;
+    }
+    if let Some(s) = sheen {
+        let color_scale = match s.color_texture {
+            Some(_) => grey(ctx, "sheenColorFactor", s.color)?,
+            None => 1.0,
+        };
+        slot(
+            TextureSlot::SheenColor,
+            s.color_texture,
+            ColorSpace::Srgb,
+            color_scale,
+            None,
+        )?;
+        slot(
+            TextureSlot::SheenRoughness,
+            s.roughness_texture,
+            ColorSpace::Linear,
+            s.roughness,
+            Some(3),
         )?;
     }
     let normal = m.normal_texture();

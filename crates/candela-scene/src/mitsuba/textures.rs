@@ -122,6 +122,7 @@ pub(super) fn for_slot(slot: TextureSlot, mut texture: TextureRef) -> TextureRef
             | TextureSlot::Weight
             | TextureSlot::Clearcoat
             | TextureSlot::ClearcoatRoughness
+            | TextureSlot::SheenRoughness
     );
     if let (true, TextureSource::Checkerboard { color0, color1 }) = (one_value, &mut texture.source)
     {
