@@ -61,16 +61,18 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         "{}",
         albedo(&m)
     );
-    // A Lambertian surface has no roughness, metalness, blend weight or
-    // clear coat; every other slot drives something.
+    // A Lambertian surface has no roughness, metalness, blend weight,
+    // clear coat or sheen; every other slot drives something.
     let names: Vec<&str> = unsupported.iter().map(|u| u.0.as_str()).collect();
-    assert_eq!(names.len(), 5, "{names:?}");
+    assert_eq!(names.len(), 7, "{names:?}");
     for slot in [
         TextureSlot::Roughness,
         TextureSlot::Metalness,
         TextureSlot::Weight,
         TextureSlot::Clearcoat,
         TextureSlot::ClearcoatRoughness,
+        TextureSlot::SheenColor,
+        TextureSlot::SheenRoughness,
     ] {
         assert!(
             names
@@ -122,18 +124,31 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         sheen_color: Vec3::ZERO,
         sheen_roughness: 0.0,
     };
-    let (_, unsupported) = Material::from_desc(&gltf, &mut cache);
+    let (m, unsupported) = Material::from_desc(&gltf, &mut cache);
     assert!(
         unsupported.len() == 1 && unsupported[0].0.contains(TextureSlot::Weight.name()),
         "{unsupported:?}"
     );
+    // The sheen's colour is an sRGB colour (decoded), its roughness a
+    // linear value (the stored one).
+    match m.bsdf_at(&hit_at(Vec2::new(0.5, 0.5))) {
+        Some(Bsdf::MetallicRoughness(mr)) => {
+            let (color, roughness) = mr.sheen();
+            assert!(
+                (color - Vec3::splat(0.2)).abs().max_element() < 2e-3,
+                "{color}"
+            );
+            assert!((roughness - stored).abs() < 1e-5, "{roughness}");
+        }
+        other => panic!("{other:?}"),
+    }
     let mut lamp = desc.clone();
     lamp.bsdf = BsdfDesc::Black;
     let (m, unsupported) = Material::from_desc(&lamp, &mut cache);
     assert_eq!(
         unsupported.len(),
-        8,
-        "colour, roughness, metalness, normal, bump, blend weight, clear coat and its roughness: {unsupported:?}"
+        10,
+        "colour, roughness, metalness, normal, bump, blend weight, clear coat, sheen and their roughness: {unsupported:?}"
     );
     assert!(m.emission.is_some(), "the emission texture makes it a lamp");
     std::fs::remove_dir_all(&dir).ok();
