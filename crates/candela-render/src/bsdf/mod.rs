@@ -263,7 +263,7 @@ pub enum Bsdf {
     },
     /// The glTF 2.0 metallic-roughness model: Lambert base and GGX
     /// specular with Schlick Fresnel, mixed by metalness, with glass-like
-    /// transmission (see `metallic_roughness.rs`).
+    /// transmission (see `metallic_roughness/`).
     MetallicRoughness(MetallicRoughness),
     /// The principled BSDF of Burley 2012/2015 as Mitsuba 3 defines it:
     /// Burley diffuse with retro-reflection, sheen, anisotropic GGX

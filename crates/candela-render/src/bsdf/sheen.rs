@@ -1,5 +1,5 @@
 //! `KHR_materials_sheen`'s sheen on the glTF metallic-roughness BSDF
-//! (`metallic_roughness.rs`, which layers it between the base and the
+//! (`metallic_roughness/`, which layers it between the base and the
 //! clear coat; see its module docs for the whole model).
 //!
 //! The sheen is the "Charlie" microfibre lobe of Estevez & Kulla 2017,
