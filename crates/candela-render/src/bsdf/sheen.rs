@@ -104,12 +104,6 @@ impl Sheen {
         sheen_albedo(cos, self.roughness)
     }
 
-    /// The sheen's approximate albedo at `cos` for choosing a lobe: the
-    /// colour's luminance times E.
-    pub(super) fn reflected(&self, cos: f32) -> f32 {
-        self.color.dot(Vec3::new(0.2126, 0.7152, 0.0722)) * self.albedo(cos)
-    }
-
     /// What the sheen leaves to the base beneath it:
     /// min(1 − max(c) E(cos θo), 1 − max(c) E(cos θi)), symmetric in the
     /// two directions.

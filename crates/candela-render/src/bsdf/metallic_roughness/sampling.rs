@@ -65,7 +65,7 @@ impl MetallicRoughness {
             };
         }
         let cos = wo.z.abs();
-        let sheen = self.sheen.reflected(cos);
+        let sheen = luminance(self.sheen.parameters().0) * self.sheen.albedo(cos);
         let total = sheen + self.sheen.base_weight(cos, cos) * base_total;
         UnderCoat {
             base,
