@@ -25,7 +25,7 @@ mod leak_tests;
 mod sides_tests;
 
 pub use normal_map::Terminator;
-pub use textures::MaterialTextures;
+pub use textures::{LayerTextures, MaterialTextures};
 
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::geometry::Frame;

@@ -25,7 +25,7 @@
 //! have theirs), a blend weight on anything but a blend, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
 
-use crate::bsdf::{Bsdf, Masking, MicrofacetDistribution};
+use crate::bsdf::{Bsdf, Masking, MetallicRoughness, MicrofacetDistribution};
 use crate::texture::{SlotTexture, TextureCache, TexturePoint};
 use candela_scene::{PerturbationRules, TextureSlot, TextureSlots};
 use glam::Vec3;
@@ -57,14 +57,9 @@ pub struct MaterialTextures {
     /// A blend's weight (read by [`crate::material::Material::bsdf_at`],
     /// which mixes the parts).
     pub weight: Option<SlotTexture>,
-    /// The glTF clear coat's strength.
-    pub clearcoat: Option<SlotTexture>,
-    /// The glTF clear coat's perceptual roughness.
-    pub clearcoat_roughness: Option<SlotTexture>,
-    /// The glTF sheen's colour.
-    pub sheen_color: Option<SlotTexture>,
-    /// The glTF sheen's perceptual roughness.
-    pub sheen_roughness: Option<SlotTexture>,
+    /// The glTF model's clear coat and sheen textures; `None` when the
+    /// material has none of them.
+    pub layers: Option<LayerTextures>,
     /// `Some(c)`: opacity is a mask with cutoff c; `None`: a coverage
     /// fraction.
     pub opacity_cutoff: Option<f32>,
@@ -73,6 +68,38 @@ pub struct MaterialTextures {
     pub opacity_constant: Option<f32>,
     /// How the normal and bump maps become the shading frame.
     pub perturbation: PerturbationRules,
+}
+
+/// The textures of the glTF model's layers over its base (clear coat,
+/// sheen), kept apart so that a material with none of them (nearly every
+/// one) says so in one check per hit ([`MaterialTextures::textures_bsdf`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LayerTextures {
+    /// The clear coat's strength.
+    pub clearcoat: Option<SlotTexture>,
+    /// The clear coat's perceptual roughness.
+    pub clearcoat_roughness: Option<SlotTexture>,
+    /// The sheen's colour.
+    pub sheen_color: Option<SlotTexture>,
+    /// The sheen's perceptual roughness.
+    pub sheen_roughness: Option<SlotTexture>,
+}
+
+impl LayerTextures {
+    /// `m` with its coat and sheen parameters read at `at` where textured.
+    fn apply(&self, m: MetallicRoughness, at: TexturePoint) -> MetallicRoughness {
+        let (coat, coat_roughness) = m.clearcoat();
+        let (sheen, sheen_roughness) = m.sheen();
+        let value = |t: &Option<SlotTexture>, v: f32| {
+            t.as_ref().map_or(v, |t| t.value(at, DEFAULT_CHANNEL))
+        };
+        let sheen = self.sheen_color.as_ref().map_or(sheen, |t| t.color(at));
+        m.with_sheen(sheen, value(&self.sheen_roughness, sheen_roughness))
+            .with_clearcoat(
+                value(&self.clearcoat, coat),
+                value(&self.clearcoat_roughness, coat_roughness),
+            )
+    }
 }
 
 impl MaterialTextures {
@@ -111,11 +138,15 @@ impl MaterialTextures {
             TextureSlot::Emission => &mut self.emission,
             TextureSlot::Opacity => &mut self.opacity,
             TextureSlot::Weight => &mut self.weight,
-            TextureSlot::Clearcoat => &mut self.clearcoat,
-            TextureSlot::ClearcoatRoughness => &mut self.clearcoat_roughness,
-            TextureSlot::SheenColor => &mut self.sheen_color,
-            TextureSlot::SheenRoughness => &mut self.sheen_roughness,
+            TextureSlot::Clearcoat => &mut self.layers_mut().clearcoat,
+            TextureSlot::ClearcoatRoughness => &mut self.layers_mut().clearcoat_roughness,
+            TextureSlot::SheenColor => &mut self.layers_mut().sheen_color,
+            TextureSlot::SheenRoughness => &mut self.layers_mut().sheen_roughness,
         }
+    }
+
+    fn layers_mut(&mut self) -> &mut LayerTextures {
+        self.layers.get_or_insert_with(LayerTextures::default)
     }
 
     /// Whether any slot that changes the BSDF is filled.
@@ -124,10 +155,7 @@ impl MaterialTextures {
         self.color.is_some()
             || self.roughness.is_some()
             || self.metalness.is_some()
-            || self.clearcoat.is_some()
-            || self.clearcoat_roughness.is_some()
-            || self.sheen_color.is_some()
-            || self.sheen_roughness.is_some()
+            || self.layers.is_some()
     }
 
     /// `bsdf` with its textured parameters read at `at`.
@@ -221,20 +249,11 @@ impl MaterialTextures {
                     .metalness
                     .as_ref()
                     .map_or(metallic, |t| t.value(at, METALNESS_CHANNEL));
-                let (coat, coat_roughness) = m.clearcoat();
-                let (sheen, sheen_roughness) = m.sheen();
-                let value = |t: &Option<SlotTexture>, v: f32| {
-                    t.as_ref().map_or(v, |t| t.value(at, DEFAULT_CHANNEL))
-                };
-                let sheen = self.sheen_color.as_ref().map_or(sheen, |t| t.color(at));
-                Bsdf::MetallicRoughness(
-                    m.with(color.unwrap_or(base), metallic, roughness.unwrap_or(rough))
-                        .with_sheen(sheen, value(&self.sheen_roughness, sheen_roughness))
-                        .with_clearcoat(
-                            value(&self.clearcoat, coat),
-                            value(&self.clearcoat_roughness, coat_roughness),
-                        ),
-                )
+                let m = m.with(color.unwrap_or(base), metallic, roughness.unwrap_or(rough));
+                Bsdf::MetallicRoughness(match &self.layers {
+                    Some(layers) => layers.apply(m, at),
+                    None => m,
+                })
             }
             Bsdf::Principled(p) => {
                 let q = p.parameters();

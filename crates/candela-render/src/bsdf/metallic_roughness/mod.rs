@@ -333,20 +333,24 @@ impl MetallicRoughness {
     /// The BSDF value (cosine excluded): the base's, under the sheen and
     /// the coat where there are.
     pub(super) fn f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        let base = self.base_f(wo, wi);
-        if !self.coat.is_on() && !self.sheen.is_on() {
+        let mut base = self.base_f(wo, wi);
+        if self.sheen.is_on() {
+            base = self.under_sheen(base, wo, wi);
+        }
+        if !self.coat.is_on() {
             return base;
         }
         let (up_o, up_i) = to_upper(wo, wi);
-        let under = if self.sheen.is_on() {
-            base * self.sheen.base_weight(up_o.z, up_i.z.abs()) + self.sheen.f(up_o, up_i)
-        } else {
-            base
-        };
-        if !self.coat.is_on() {
-            return under;
-        }
-        under * self.coat.base_weight(up_o.z, up_i.z.abs()) + Vec3::splat(self.coat.f(up_o, up_i))
+        base * self.coat.base_weight(up_o.z, up_i.z.abs()) + Vec3::splat(self.coat.f(up_o, up_i))
+    }
+
+    /// `base`'s value under the sheen: dimmed by it, plus the sheen's own
+    /// lobe. Out of line, so that the sheenless model's value (inlined into
+    /// the render loop's BSDF calls) is as small as before the sheen.
+    #[inline(never)]
+    fn under_sheen(&self, base: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
+        let (up_o, up_i) = to_upper(wo, wi);
+        base * self.sheen.base_weight(up_o.z, up_i.z.abs()) + self.sheen.f(up_o, up_i)
     }
 
     /// The uncoated model's value.

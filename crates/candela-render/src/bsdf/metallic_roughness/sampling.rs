@@ -57,21 +57,22 @@ impl MetallicRoughness {
     fn under_coat(&self, wo: Vec3) -> UnderCoat {
         let base = self.choice(wo);
         let base_total = base.as_ref().map_or(0.0, |c| c.total);
-        if !self.sheen.is_on() {
-            return UnderCoat {
-                base,
-                sheen: 0.0,
-                total: base_total,
-            };
-        }
-        let cos = wo.z.abs();
+        let (sheen, total) = if self.sheen.is_on() {
+            self.sheen_share(wo.z.abs(), base_total)
+        } else {
+            (0.0, base_total)
+        };
+        UnderCoat { base, sheen, total }
+    }
+
+    /// The sheen's probability against the base's lobes (their approximate
+    /// albedo `base_total`) at cosine `cos`, and the two's approximate
+    /// albedo. Out of line, as `under_sheen` (`mod.rs`).
+    #[inline(never)]
+    fn sheen_share(&self, cos: f32, base_total: f32) -> (f32, f32) {
         let sheen = luminance(self.sheen.parameters().0) * self.sheen.albedo(cos);
         let total = sheen + self.sheen.base_weight(cos, cos) * base_total;
-        UnderCoat {
-            base,
-            sheen: if total > 0.0 { sheen / total } else { 0.0 },
-            total,
-        }
+        (if total > 0.0 { sheen / total } else { 0.0 }, total)
     }
 
     /// The probability of sampling the coat at `wo`: its share c S(cos θo)
