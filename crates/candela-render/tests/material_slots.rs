@@ -138,7 +138,7 @@ fn every_texture_slot_is_read_or_reported_by_name() {
                 (color - Vec3::splat(0.2)).abs().max_element() < 2e-3,
                 "{color}"
             );
-            assert!((roughness - stored).abs() < 1e-5, "{roughness}");
+            assert!((roughness - stored).abs() < 2e-5, "{roughness}"); // 16-bit storage
         }
         other => panic!("{other:?}"),
     }

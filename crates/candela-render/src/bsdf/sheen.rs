@@ -59,49 +59,77 @@ pub(super) const MIN_ALPHA: f32 = 0.08;
 pub(super) const MIN_COSINE: f32 = 1e-2;
 
 /// A sheen: colour and perceptual roughness, each in [0, 1].
+///
+/// Both are kept as 16-bit fractions (steps of 1/65535, far finer than
+/// any sheen a file or texture gives), 8 bytes in all: the glTF model then
+/// stays within the 60 bytes that fit beside [`super::Bsdf`]'s tag (held
+/// in a niche of the rough plastic's, the largest model). With the sheen
+/// in four `f32` every `Bsdf` grows from 72 to 80 bytes, and the render
+/// loop with it, sheen or not (0.15% more instructions on CS184's CBbunny;
+/// `bsdf/mod.rs` checks the size).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Sheen {
-    color: Vec3,
-    roughness: f32,
+    color: [u16; 3],
+    roughness: u16,
+}
+
+/// The 16-bit fraction of one value in [0, 1].
+const UNIT: f32 = u16::MAX as f32;
+
+/// `v` in [0, 1] (NaN as 0) as a 16-bit fraction.
+fn fraction(v: f32) -> u16 {
+    let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
+    (v * UNIT).round() as u16
 }
 
 impl Sheen {
     /// No sheen (the extension's default colour, black).
     pub(super) const NONE: Self = Self {
-        color: Vec3::ZERO,
-        roughness: 0.0,
+        color: [0; 3],
+        roughness: 0,
     };
 
     /// A sheen of colour `color` and perceptual `roughness`, each clamped to
-    /// [0, 1] (NaN to 0, the extension's defaults).
+    /// [0, 1] (NaN to 0, the extension's defaults) and rounded to 16-bit
+    /// fractions.
     pub(super) fn new(color: Vec3, roughness: f32) -> Self {
-        let unit = |v: f32| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
         Self {
-            color: color.to_array().map(unit).into(),
-            roughness: unit(roughness),
+            color: color.to_array().map(fraction),
+            roughness: fraction(roughness),
         }
+    }
+
+    /// The colour, per channel in [0, 1].
+    fn color(&self) -> Vec3 {
+        Vec3::from(self.color.map(f32::from)) / UNIT
+    }
+
+    /// The perceptual roughness.
+    fn roughness(&self) -> f32 {
+        f32::from(self.roughness) / UNIT
     }
 
     /// Colour and perceptual roughness.
     pub(super) fn parameters(&self) -> (Vec3, f32) {
-        (self.color, self.roughness)
+        (self.color(), self.roughness())
     }
 
     /// Whether there is a sheen at all (the extension: a black sheen colour
     /// disables the layer); without one the BSDF skips every sheen term, so
     /// it is exactly the sheenless model.
     pub(super) fn is_on(&self) -> bool {
-        self.color.max_element() > 0.0
+        self.color != [0; 3]
     }
 
     /// The lobe's α: roughness², at least [`MIN_ALPHA`].
     fn alpha(&self) -> f32 {
-        (self.roughness * self.roughness).max(MIN_ALPHA)
+        let r = self.roughness();
+        (r * r).max(MIN_ALPHA)
     }
 
     /// E(cos): the lobe's directional albedo per unit colour.
     pub(super) fn albedo(&self, cos: f32) -> f32 {
-        sheen_albedo(cos, self.roughness)
+        sheen_albedo(cos, self.roughness())
     }
 
     /// What the sheen leaves to the base beneath it:
@@ -109,7 +137,7 @@ impl Sheen {
     /// two directions.
     pub(super) fn base_weight(&self, cos_o: f32, cos_i: f32) -> f32 {
         let e = self.albedo(cos_o).max(self.albedo(cos_i));
-        (1.0 - self.color.max_element() * e).max(0.0)
+        (1.0 - self.color().max_element() * e).max(0.0)
     }
 
     /// The sheen lobe's value for an upper pair (0 below the surface).
@@ -117,7 +145,7 @@ impl Sheen {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return Vec3::ZERO;
         }
-        self.color * sheen_value(wo, wi, self.alpha())
+        self.color() * sheen_value(wo, wi, self.alpha())
     }
 }
 

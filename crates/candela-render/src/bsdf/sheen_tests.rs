@@ -357,8 +357,8 @@ fn sheen_colour_zero_is_exactly_the_sheenless_model() {
 
 #[test]
 fn the_sheen_lobe_scales_with_its_colour_and_rises_at_grazing_angles() {
-    // f = colour · D · V: a grey sheen of 0.5 is half the white one's value,
-    // and the lobe (back-scattering fibres) is brighter seen and lit at
+    // f = colour · D · V: a grey sheen of 0.5 is half the white one's value
+    // (up to the colour's 16-bit storage), and the lobe (back-scattering fibres) is brighter seen and lit at
     // grazing angles than at normal incidence.
     let (white, grey) = (
         sheen_alone(0.5),
@@ -374,7 +374,7 @@ fn the_sheen_lobe_scales_with_its_colour_and_rises_at_grazing_angles() {
             Vec3::new(wi.x, wi.y, wi.z.abs()),
         );
         let (a, b) = (white.f(wo, wi), grey.f(wo, wi));
-        assert!((b - 0.5 * a).abs().max_element() <= 1e-6 * a.max_element().max(1.0));
+        assert!((b - 0.5 * a).abs().max_element() <= 2e-5 * a.max_element().max(1.0));
     }
     let grazing = at_cosine(0.1);
     let back = Vec3::new(grazing.x * 0.9, 0.3, grazing.z).normalize();
