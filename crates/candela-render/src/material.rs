@@ -170,9 +170,12 @@ impl Material {
                 specular_color,
                 clearcoat,
                 clearcoat_roughness,
+                sheen_color,
+                sheen_roughness,
             } => Some(Bsdf::MetallicRoughness(
                 MetallicRoughness::new(base_color, metallic, roughness, transmission, ior)
                     .with_specular(specular, specular_color)
+                    .with_sheen(sheen_color, sheen_roughness)
                     .with_clearcoat(clearcoat, clearcoat_roughness),
             )),
             BsdfDesc::Principled(p) => Some(Bsdf::Principled(Principled::new(p))),

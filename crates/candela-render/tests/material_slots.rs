@@ -62,8 +62,8 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         albedo(&m)
     );
     // A Lambertian surface has no roughness, metalness, blend weight,
-    // clear coat, transmission or specular layer; every other slot drives
-    // something.
+    // clear coat, sheen, transmission or specular layer; every other slot
+    // drives something.
     let names: Vec<&str> = unsupported.iter().map(|u| u.0.as_str()).collect();
     let lambert_lacks = [
         TextureSlot::Roughness,
@@ -74,6 +74,8 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         TextureSlot::Transmission,
         TextureSlot::Specular,
         TextureSlot::SpecularColor,
+        TextureSlot::SheenColor,
+        TextureSlot::SheenRoughness,
     ];
     assert_eq!(names.len(), lambert_lacks.len(), "{names:?}");
     for slot in lambert_lacks {
@@ -124,12 +126,27 @@ fn every_texture_slot_is_read_or_reported_by_name() {
         specular_color: Vec3::ONE,
         clearcoat: 0.0,
         clearcoat_roughness: 0.0,
+        sheen_color: Vec3::ZERO,
+        sheen_roughness: 0.0,
     };
-    let (_, unsupported) = Material::from_desc(&gltf, &mut cache);
+    let (m, unsupported) = Material::from_desc(&gltf, &mut cache);
     assert!(
         unsupported.len() == 1 && unsupported[0].0.contains(TextureSlot::Weight.name()),
         "{unsupported:?}"
     );
+    // The sheen's colour is an sRGB colour (decoded), its roughness a
+    // linear value (the stored one).
+    match m.bsdf_at(&hit_at(Vec2::new(0.5, 0.5))) {
+        Some(Bsdf::MetallicRoughness(mr)) => {
+            let (color, roughness) = mr.sheen();
+            assert!(
+                (color - Vec3::splat(0.2)).abs().max_element() < 2e-3,
+                "{color}"
+            );
+            assert!((roughness - stored).abs() < 2e-5, "{roughness}"); // 16-bit storage
+        }
+        other => panic!("{other:?}"),
+    }
     let mut lamp = desc.clone();
     lamp.bsdf = BsdfDesc::Black;
     let (m, unsupported) = Material::from_desc(&lamp, &mut cache);

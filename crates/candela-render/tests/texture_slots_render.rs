@@ -208,6 +208,8 @@ fn a_flat_normal_map_renders_bit_for_bit_as_none() {
             specular_color: Vec3::ONE,
             clearcoat: 0.0,
             clearcoat_roughness: 0.0,
+            sheen_color: Vec3::ZERO,
+            sheen_roughness: 0.0,
         },
         None,
     );

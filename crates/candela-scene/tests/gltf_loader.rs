@@ -210,6 +210,8 @@ fn metallic_roughness_materials_map_onto_the_bsdfs() {
             specular_color: Vec3::ONE,
             clearcoat: 0.0,
             clearcoat_roughness: 0.0,
+            sheen_color: Vec3::ZERO,
+            sheen_roughness: 0.0,
         }
     );
 }
@@ -293,6 +295,8 @@ fn emission_transmission_and_texture_slots() {
             specular_color: Vec3::ONE,
             clearcoat: 0.0,
             clearcoat_roughness: 0.0,
+            sheen_color: Vec3::ZERO,
+            sheen_roughness: 0.0,
         }
     );
 }

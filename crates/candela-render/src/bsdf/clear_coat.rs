@@ -1,5 +1,5 @@
 //! `KHR_materials_clearcoat`'s coat on the glTF metallic-roughness BSDF
-//! (`metallic_roughness.rs`, which layers it over its other lobes; see its
+//! (`metallic_roughness/`, which layers it over its other lobes; see its
 //! module docs for the whole model and why the weights differ from the
 //! extension's `fresnel_coat`).
 //!

@@ -17,7 +17,7 @@
 //! Below the uncoated values (`metallic_roughness_tests.rs`) by what the
 //! coat reflects back towards the base, which a single layer does not
 //! follow (the base is dimmed at both directions, see
-//! `metallic_roughness.rs`). At grazing angles a rough coat loses more:
+//! `metallic_roughness/`). At grazing angles a rough coat loses more:
 //! the base gets 1 − S(cos θo) (0.36 at 85°) while the rough coat's masked
 //! reflection is far below S, as for the base's own rough specular layer.
 

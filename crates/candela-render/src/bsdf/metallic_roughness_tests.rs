@@ -22,7 +22,7 @@
 //! roughness 1 (α = 1), normal incidence, is GGX's 1 − ln 2 = 0.31. The
 //! dielectric at grazing angles loses what its rough specular layer loses:
 //! its Lambert base takes exactly the 1 − S(cos θo) that a smooth layer
-//! would pass (see `metallic_roughness.rs`), and at 85° Schlick's S is
+//! would pass (see `metallic_roughness/`), and at 85° Schlick's S is
 //! 0.64 while the rough layer's masked reflection is far less.
 
 use glam::Vec3;

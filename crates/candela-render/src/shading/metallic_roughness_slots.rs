@@ -1,6 +1,7 @@
 //! The texture slots only the glTF metallic-roughness model reads: its
-//! extensions' clear coat (`KHR_materials_clearcoat`), transmitted
-//! fraction (`KHR_materials_transmission`) and specular layer
+//! extensions' clear coat (`KHR_materials_clearcoat`), sheen
+//! (`KHR_materials_sheen`), transmitted fraction
+//! (`KHR_materials_transmission`) and specular layer
 //! (`KHR_materials_specular`).
 //!
 //! Kept apart from [`MaterialTextures`](super::MaterialTextures)' common
@@ -21,6 +22,10 @@ pub struct MetallicRoughnessSlots {
     pub clearcoat: Option<SlotTexture>,
     /// The clear coat's perceptual roughness.
     pub clearcoat_roughness: Option<SlotTexture>,
+    /// The sheen's colour (texel × tint × scale).
+    pub sheen_color: Option<SlotTexture>,
+    /// The sheen's perceptual roughness (alpha by default, glTF's channel).
+    pub sheen_roughness: Option<SlotTexture>,
     /// The dielectric part's transmitted fraction.
     pub transmission: Option<SlotTexture>,
     /// The dielectric specular layer's strength (alpha by default, glTF's
@@ -40,6 +45,8 @@ impl MetallicRoughnessSlots {
             t.as_ref().map_or(constant, |t| t.value(at, channel))
         };
         let (coat, coat_roughness) = m.clearcoat();
+        let (sheen, sheen_roughness) = m.sheen();
+        let sheen = self.sheen_color.as_ref().map_or(sheen, |t| t.color(at));
         let (specular, specular_color) = m.specular();
         let specular_color = self
             .specular_color
@@ -50,6 +57,10 @@ impl MetallicRoughnessSlots {
             .with_specular(
                 value(&self.specular, specular, ALPHA_CHANNEL),
                 specular_color,
+            )
+            .with_sheen(
+                sheen,
+                value(&self.sheen_roughness, sheen_roughness, ALPHA_CHANNEL),
             )
             .with_clearcoat(
                 value(&self.clearcoat, coat, DEFAULT_CHANNEL),

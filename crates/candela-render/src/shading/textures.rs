@@ -15,6 +15,7 @@
 //! | transmission (R, or the slot's channel) | the glTF model's transmitted fraction |
 //! | specular strength (alpha, glTF's channel, or the slot's) | the glTF model's specular layer strength |
 //! | specular colour | the glTF model's specular F0 tint (not clamped to 1: the model caps F0 itself, and glTF lets the factor exceed 1) |
+//! | sheen colour (RGB), sheen roughness (R, or the slot's channel: glTF's is alpha) | the glTF model's sheen colour and sheen roughness |
 //! | normal map, bump map | the shading normal (`normal_map.rs`) |
 //! | emission | emitted radiance (`Material::emission_at`; area lights sample it at the sampled point) |
 //! | opacity (alpha if the image has it, else R) | cut-outs (`opacity.rs`) |
@@ -26,7 +27,7 @@
 //! ranges after scaling, so a texture never creates energy. A slot a BSDF
 //! has no parameter for (roughness on a mirror, thin glass or smooth
 //! plastic, metalness outside the glTF and principled models, the clear
-//! coat's, transmission's and specular layer's slots outside the glTF
+//! coat's, sheen's, transmission's and specular layer's slots outside the glTF
 //! model, colour or roughness on a blend (its parts have theirs), a blend
 //! weight on anything but a blend, any of colour/roughness/metalness on a
 //! pure emitter) is returned as unsupported, by name.
@@ -119,6 +120,8 @@ impl MaterialTextures {
             TextureSlot::Weight => &mut self.weight,
             TextureSlot::Clearcoat => &mut self.layers().clearcoat,
             TextureSlot::ClearcoatRoughness => &mut self.layers().clearcoat_roughness,
+            TextureSlot::SheenColor => &mut self.layers().sheen_color,
+            TextureSlot::SheenRoughness => &mut self.layers().sheen_roughness,
             TextureSlot::Transmission => &mut self.layers().transmission,
             TextureSlot::Specular => &mut self.layers().specular,
             TextureSlot::SpecularColor => &mut self.layers().specular_color,
@@ -306,7 +309,9 @@ fn drives(bsdf: Option<&Bsdf>, slot: TextureSlot) -> bool {
             | TextureSlot::ClearcoatRoughness
             | TextureSlot::Transmission
             | TextureSlot::Specular
-            | TextureSlot::SpecularColor,
+            | TextureSlot::SpecularColor
+            | TextureSlot::SheenColor
+            | TextureSlot::SheenRoughness,
             Some(b),
         ) => matches!(b, Bsdf::MetallicRoughness(_)),
         (TextureSlot::Metalness, Some(b)) => {

@@ -106,11 +106,17 @@ pub enum TextureSlot {
     Specular,
     /// The tint of that layer's F0, a colour (`specularColorTexture`, sRGB).
     SpecularColor,
+    /// The colour of the metallic-roughness model's sheen, per channel in
+    /// [0, 1] (`KHR_materials_sheen`'s `sheenColorTexture`, sRGB).
+    SheenColor,
+    /// The sheen's perceptual roughness in [0, 1]
+    /// (`sheenRoughnessTexture`, alpha in glTF files).
+    SheenRoughness,
 }
 
 impl TextureSlot {
     /// Every slot, in declaration order.
-    pub const ALL: [TextureSlot; 13] = [
+    pub const ALL: [TextureSlot; 15] = [
         TextureSlot::Color,
         TextureSlot::Roughness,
         TextureSlot::Metalness,
@@ -124,6 +130,8 @@ impl TextureSlot {
         TextureSlot::Transmission,
         TextureSlot::Specular,
         TextureSlot::SpecularColor,
+        TextureSlot::SheenColor,
+        TextureSlot::SheenRoughness,
     ];
 
     /// The slot's name in messages.
@@ -142,6 +150,8 @@ impl TextureSlot {
             TextureSlot::Transmission => "transmission",
             TextureSlot::Specular => "specular strength",
             TextureSlot::SpecularColor => "specular colour",
+            TextureSlot::SheenColor => "sheen colour",
+            TextureSlot::SheenRoughness => "sheen roughness",
         }
     }
 
@@ -149,9 +159,10 @@ impl TextureSlot {
     /// sRGB for colours, linear for data.
     pub fn default_color_space(self) -> ColorSpace {
         match self {
-            TextureSlot::Color | TextureSlot::Emission | TextureSlot::SpecularColor => {
-                ColorSpace::Srgb
-            }
+            TextureSlot::Color
+            | TextureSlot::Emission
+            | TextureSlot::SpecularColor
+            | TextureSlot::SheenColor => ColorSpace::Srgb,
             _ => ColorSpace::Linear,
         }
     }
@@ -186,6 +197,10 @@ pub struct TextureSlots {
     pub specular: Option<TextureRef>,
     /// The glTF model's specular tint.
     pub specular_color: Option<TextureRef>,
+    /// The glTF sheen's colour.
+    pub sheen_color: Option<TextureRef>,
+    /// The glTF sheen's roughness.
+    pub sheen_roughness: Option<TextureRef>,
     /// How the opacity slot's value is read: `None` as a coverage fraction
     /// (a point of opacity a is kept with probability a, glTF `BLEND`),
     /// `Some(c)` as a mask (opaque where the value is at least c, cut out
@@ -234,6 +249,8 @@ impl TextureSlots {
             TextureSlot::Transmission => &self.transmission,
             TextureSlot::Specular => &self.specular,
             TextureSlot::SpecularColor => &self.specular_color,
+            TextureSlot::SheenColor => &self.sheen_color,
+            TextureSlot::SheenRoughness => &self.sheen_roughness,
         }
     }
 
@@ -252,6 +269,8 @@ impl TextureSlots {
             TextureSlot::Transmission => &mut self.transmission,
             TextureSlot::Specular => &mut self.specular,
             TextureSlot::SpecularColor => &mut self.specular_color,
+            TextureSlot::SheenColor => &mut self.sheen_color,
+            TextureSlot::SheenRoughness => &mut self.sheen_roughness,
         }
     }
 }
@@ -368,7 +387,8 @@ pub enum BsdfDesc {
     /// The glTF 2.0 metallic-roughness model (Lambert base, GGX specular
     /// with Schlick Fresnel, mixed by metalness) with
     /// `KHR_materials_transmission`, `KHR_materials_ior` and
-    /// `KHR_materials_specular` and `KHR_materials_clearcoat`.
+    /// `KHR_materials_specular`, `KHR_materials_sheen` and
+    /// `KHR_materials_clearcoat` (the coat over the sheen over the rest).
     MetallicRoughness {
         /// Base colour (linear), per channel in [0, 1].
         base_color: Vec3,
@@ -392,6 +412,12 @@ pub enum BsdfDesc {
         /// The clear coat's perceptual roughness in [0, 1]
         /// (`clearcoatRoughnessFactor`, 0 by default: a mirror-smooth coat).
         clearcoat_roughness: f32,
+        /// Colour of the sheen, per channel in [0, 1] (`KHR_materials_sheen`'s
+        /// `sheenColorFactor`, black by default: no sheen).
+        sheen_color: Vec3,
+        /// The sheen's perceptual roughness in [0, 1]
+        /// (`sheenRoughnessFactor`, 0 by default).
+        sheen_roughness: f32,
     },
     /// The principled BSDF (Burley 2012/2015) as Mitsuba 3's `principled`
     /// defines it.

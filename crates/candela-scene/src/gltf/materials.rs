@@ -5,8 +5,10 @@
 //! in red), `KHR_materials_ior` (1.5 by default) and
 //! `KHR_materials_specular` (`specularFactor` with `specularTexture` in
 //! alpha, `specularColorFactor` with the sRGB `specularColorTexture`),
-//! `KHR_materials_clearcoat` (`clearcoat.rs`), and every texture in its
-//! slot.
+//! `KHR_materials_sheen` (`sheen.rs`: a sheen colour and roughness, the
+//! colour texture's RGB in sRGB tinted by the factor, the roughness
+//! texture's alpha), `KHR_materials_clearcoat` (`clearcoat.rs`), and every
+//! texture in its slot.
 //!
 //! `KHR_materials_volume` fills the inside of a mesh whose `thicknessFactor`
 //! is above 0 with an absorbing medium ([`volume_medium`]).
@@ -31,6 +33,7 @@
 
 use super::accessors::Buffers;
 use super::clearcoat::read_clearcoat;
+use super::sheen::read_sheen;
 use super::textures::texture_ref;
 use super::Ctx;
 use crate::desc::{
@@ -92,6 +95,7 @@ pub(super) fn read_material(
     let specular_color = specular
         .as_ref()
         .map_or(Vec3::ONE, |s| Vec3::from(s.specular_color_factor()));
+    let sheen = read_sheen(ctx, doc, m)?;
     let bsdf = BsdfDesc::MetallicRoughness {
         base_color: base,
         metallic: metal,
@@ -102,6 +106,8 @@ pub(super) fn read_material(
         specular_color,
         clearcoat: coat.as_ref().map_or(0.0, |c| c.factor),
         clearcoat_roughness: coat.as_ref().map_or(0.0, |c| c.roughness),
+        sheen_color: sheen.as_ref().map_or(Vec3::ZERO, |s| s.color),
+        sheen_roughness: sheen.as_ref().map_or(0.0, |s| s.roughness),
     };
     let strength = m.emissive_strength().unwrap_or(1.0);
     let emissive = Vec3::from(m.emissive_factor()) * strength;
@@ -187,6 +193,20 @@ pub(super) fn read_material(
             c.roughness_texture,
             ColorSpace::Linear,
             Factor::Channel(c.roughness, 1),
+        )?;
+    }
+    if let Some(s) = sheen {
+        slot(
+            TextureSlot::SheenColor,
+            s.color_texture,
+            ColorSpace::Srgb,
+            Factor::Color(s.color),
+        )?;
+        slot(
+            TextureSlot::SheenRoughness,
+            s.roughness_texture,
+            ColorSpace::Linear,
+            Factor::Channel(s.roughness, 3),
         )?;
     }
     let normal = m.normal_texture();

@@ -19,11 +19,13 @@ mod accessors;
 mod buffers;
 mod cameras;
 mod clearcoat;
+mod extension_textures;
 mod glb;
 mod lights;
 mod materials;
 mod meshes;
 mod nodes;
+mod sheen;
 mod textures;
 
 pub(crate) use textures::extracted_images_dir;
@@ -45,6 +47,7 @@ const READ_EXTENSIONS: &[&str] = &[
     "KHR_materials_emissive_strength",
     "KHR_materials_transmission",
     "KHR_materials_ior",
+    "KHR_materials_sheen",
     "KHR_materials_specular",
     "KHR_materials_volume",
     "KHR_texture_transform",

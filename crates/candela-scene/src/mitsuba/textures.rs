@@ -124,6 +124,7 @@ pub(super) fn for_slot(slot: TextureSlot, mut texture: TextureRef) -> TextureRef
             | TextureSlot::ClearcoatRoughness
             | TextureSlot::Transmission
             | TextureSlot::Specular
+            | TextureSlot::SheenRoughness
     );
     if let (true, TextureSource::Checkerboard { color0, color1 }) = (one_value, &mut texture.source)
     {

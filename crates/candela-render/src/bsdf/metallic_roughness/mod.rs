@@ -1,7 +1,8 @@
 //! The glTF 2.0 metallic-roughness BSDF (glTF 2.0 specification,
 //! appendix B "BRDF Implementation"), with `KHR_materials_transmission`,
-//! `KHR_materials_ior`, `KHR_materials_specular` and
-//! `KHR_materials_clearcoat`.
+//! `KHR_materials_ior`, `KHR_materials_specular`, `KHR_materials_sheen`
+//! and `KHR_materials_clearcoat`: the coat over the sheen over the base,
+//! as the extensions order them.
 //!
 //! With base colour c, metalness m, transmission t, α = roughness² on GGX
 //! (Trowbridge-Reitz) microfacets, h the half vector and
@@ -21,9 +22,15 @@
 //!   (the base's weight below is then exactly 1): the way a glTF file says
 //!   "pure Lambertian";
 //! - f_base = m · metal + (1 − m)(1 − t) · opaque dielectric + (1 − m) t · glass;
+//! - `KHR_materials_sheen`, with sheen colour k_s and perceptual roughness
+//!   r_s (`sheen.rs`: Estevez & Kulla's "Charlie" fibre lobe, α = r_s²,
+//!   its directional albedo E tabulated in `sheen_albedo.rs`):
+//!   f_under = f_sheen + min(1 − max(k_s) E(|cos θo|), 1 − max(k_s) E(|cos θi|)) · f_base,
+//!   the extension's albedo scaling, symmetric as written. At k_s = 0
+//!   every sheen term is skipped: exactly the sheenless model;
 //! - `KHR_materials_clearcoat`, with strength c and a coat of perceptual
 //!   roughness r_c (`clear_coat.rs`: GGX with α = r_c², F0 = 0.04):
-//!   f = (1 − c S(0.04, |cos θo|)) (1 − c S(0.04, |cos θi|)) · f_base +
+//!   f = (1 − c S(0.04, |cos θo|)) (1 − c S(0.04, |cos θi|)) · f_under +
 //!   c S(0.04, wo·h) · D_c(h) G2_c(wo, wi) / (4 cos θo cos θi).
 //!   At c = 0 every coat term is skipped: exactly the uncoated model.
 //!
@@ -68,6 +75,14 @@
 //! reported by the loader), and it dims neither emission nor the
 //! transmitted light's colour beyond these weights.
 //!
+//! **The sheen between them.** "The base" of the coat's weights is then
+//! everything beneath the coat, sheen included. The sheen's own scaling
+//! is the extension's min form, which is already symmetric; like the
+//! coat's, it also dims the transmitted lobe (at |cos θi| on the far
+//! side), and the sheen lobe is two-sided like the opaque lobes. A smooth
+//! specular layer under a sheen stays a delta lobe, dimmed by
+//! 1 − max(k_s) E(cos θo) (the mirror direction has the same cosine).
+//!
 //! The transmitted fraction ("glass-like transmission") is the rough
 //! dielectric of `rough_dielectric.rs` (Walter et al. 2007) with the same
 //! α, IOR `ior` and transmittance c: it refracts, scales radiance by 1/η²,
@@ -85,12 +100,14 @@
 //! of reflectance 1 (Schlick's S(1) = 1). The transmitted lobe stays a
 //! rough dielectric with α clamped to [`MIN_ALPHA`](super::MIN_ALPHA).
 //!
-//! Sampling picks a lobe with probabilities that depend on `wo` only
+//! Sampling (`sampling.rs`) picks a lobe with probabilities that depend on `wo` only
 //! (the lobes' approximate albedos: c S(0.04, cos θo) for the coat, the
-//! rest shared by the base's lobes as their weights say; Schlick at cos θo
+//! rest shared by the sheen, luminance(k_s) E(cos θo), and the base's
+//! lobes dimmed by 1 − max(k_s) E(cos θo), as their weights say; Schlick at cos θo
 //! for the specular lobe, the rest of the dielectric's weight times the base's luminance for
 //! the diffuse lobe, t(1 − m) for the glass), samples it (visible GGX
-//! normals, cosine hemisphere, or the rough dielectric), and returns the
+//! normals, cosine hemisphere for the diffuse lobe and for the sheen, or
+//! the rough dielectric), and returns the
 //! whole mixture's `f` and `pdf`. A smooth coat over a smooth specular
 //! layer puts two delta lobes in one direction; a delta sample then
 //! carries both (their reflectances over their summed probabilities). Single scattering: energy is lost at
@@ -99,16 +116,16 @@
 
 use std::f32::consts::FRAC_1_PI;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
+
+mod sampling;
 
 use super::clear_coat::ClearCoat;
 use super::distribution::{Masking, MicrofacetDistribution};
-use super::microfacet;
 use super::rough_dielectric::RoughDielectric;
-use super::specular::{delta_sample, reflect_local, MIRROR_FLAGS};
+use super::sheen::Sheen;
 use super::specular_albedo::SpecularAlbedo;
-use super::{BsdfFlags, BsdfSample};
-use crate::sampling::warp::square_to_cosine_hemisphere;
+use super::BsdfFlags;
 
 /// The model's parameters, each in its range (see [`MetallicRoughness::new`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -120,16 +137,8 @@ pub struct MetallicRoughness {
     ior: f32,
     specular: f32,
     specular_color: Vec3,
+    sheen: Sheen,
     coat: ClearCoat,
-}
-
-/// Lobe selection probabilities of the base at one `wo`, and their
-/// approximate albedo before normalisation (to weigh the coat against).
-struct LobeChoice {
-    specular: f32,
-    diffuse: f32,
-    glass: f32,
-    total: f32,
 }
 
 impl MetallicRoughness {
@@ -151,6 +160,7 @@ impl MetallicRoughness {
             ior: if ior.is_finite() { ior.max(1.0) } else { 1.5 },
             specular: 1.0,
             specular_color: Vec3::ONE,
+            sheen: Sheen::NONE,
             coat: ClearCoat::NONE,
         }
     }
@@ -207,16 +217,32 @@ impl MetallicRoughness {
         self.coat.parameters()
     }
 
+    /// The same material with `KHR_materials_sheen`'s colour
+    /// (`sheenColorFactor`) and perceptual roughness
+    /// (`sheenRoughnessFactor`), each clamped to [0, 1] (NaN to 0).
+    pub fn with_sheen(self, color: Vec3, roughness: f32) -> Self {
+        Self {
+            sheen: Sheen::new(color, roughness),
+            ..self
+        }
+    }
+
+    /// The sheen's colour and perceptual roughness.
+    pub fn sheen(&self) -> (Vec3, f32) {
+        self.sheen.parameters()
+    }
+
     /// Base colour.
     pub fn base_color(&self) -> Vec3 {
         self.base_color
     }
 
     /// The same material with other base colour, metalness or roughness
-    /// (textures), clamped as in [`MetallicRoughness::new`]; the coat is
-    /// kept.
+    /// (textures), clamped as in [`MetallicRoughness::new`]; the sheen and
+    /// the coat are kept.
     pub fn with(&self, base_color: Vec3, metallic: f32, roughness: f32) -> Self {
         Self {
+            sheen: self.sheen,
             coat: self.coat,
             ..Self::new(base_color, metallic, roughness, self.transmission, self.ior)
                 .with_specular(self.specular, self.specular_color)
@@ -249,6 +275,9 @@ impl MetallicRoughness {
             flags = flags
                 .union(BsdfFlags::TRANSMISSION)
                 .union(BsdfFlags::GLOSSY);
+        }
+        if self.sheen.is_on() {
+            flags = flags.union(BsdfFlags::GLOSSY);
         }
         if self.coat.is_on() {
             flags = flags.union(self.coat.flag());
@@ -342,15 +371,27 @@ impl MetallicRoughness {
         (1.0 - self.metallic) * (1.0 - self.transmission)
     }
 
-    /// The BSDF value (cosine excluded): the base's, under the coat if
-    /// there is one.
+    /// The BSDF value (cosine excluded): the base's, under the sheen and
+    /// the coat where there are.
     pub(super) fn f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        let base = self.base_f(wo, wi);
+        let mut base = self.base_f(wo, wi);
+        if self.sheen.is_on() {
+            base = self.under_sheen(base, wo, wi);
+        }
         if !self.coat.is_on() {
             return base;
         }
         let (up_o, up_i) = to_upper(wo, wi);
         base * self.coat.base_weight(up_o.z, up_i.z.abs()) + Vec3::splat(self.coat.f(up_o, up_i))
+    }
+
+    /// `base`'s value under the sheen: dimmed by it, plus the sheen's own
+    /// lobe. Out of line, so that the sheenless model's value (inlined into
+    /// the render loop's BSDF calls) is as small as before the sheen.
+    #[inline(never)]
+    fn under_sheen(&self, base: Vec3, wo: Vec3, wi: Vec3) -> Vec3 {
+        let (up_o, up_i) = to_upper(wo, wi);
+        base * self.sheen.base_weight(up_o.z, up_i.z.abs()) + self.sheen.f(up_o, up_i)
     }
 
     /// The uncoated model's value.
@@ -384,129 +425,6 @@ impl MetallicRoughness {
         let s5 = schlick_weight(cos_o);
         self.metallic * self.metal_schlick(s5)
             + self.opaque_dielectric_weight() * self.dielectric_schlick(s5)
-    }
-
-    /// The lobe probabilities at `wo`; `None` when nothing scatters.
-    fn choice(&self, wo: Vec3) -> Option<LobeChoice> {
-        let s5 = schlick_weight(wo.z.abs());
-        let fd = self.dielectric_schlick(s5);
-        let w = self.opaque_dielectric_weight();
-        let specular = self.metallic * luminance(self.metal_schlick(s5)) + w * luminance(fd);
-        let diffuse = w * luminance((Vec3::ONE - fd) * self.base_color);
-        let glass = self.glass_weight();
-        let total = specular + diffuse + glass;
-        (total > 0.0 && total.is_finite()).then(|| LobeChoice {
-            specular: specular / total,
-            diffuse: diffuse / total,
-            glass: glass / total,
-            total,
-        })
-    }
-
-    /// The probability of sampling the coat at `wo`: its share c S(cos θo)
-    /// against what it leaves to the base's lobes (their approximate
-    /// albedo `base.total`); 0 without a coat.
-    fn coat_probability(&self, wo: Vec3, base: Option<&LobeChoice>) -> f32 {
-        if !self.coat.is_on() {
-            return 0.0;
-        }
-        let coat = self.coat.reflected(wo.z.abs());
-        let rest = (1.0 - coat) * base.map_or(0.0, |c| c.total);
-        coat / (coat + rest)
-    }
-
-    /// The density of [`MetallicRoughness::sample`] per unit solid angle.
-    pub(super) fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let choice = self.choice(wo);
-        let coat = self.coat_probability(wo, choice.as_ref());
-        let base = choice.map_or(0.0, |c| self.base_pdf(&c, wo, wi));
-        if coat == 0.0 {
-            return base;
-        }
-        let (up_o, up_i) = to_upper(wo, wi);
-        (1.0 - coat) * base + coat * self.coat.pdf(up_o, up_i)
-    }
-
-    /// The base lobes' density, chosen as `c` says.
-    fn base_pdf(&self, c: &LobeChoice, wo: Vec3, wi: Vec3) -> f32 {
-        let glass = if c.glass > 0.0 {
-            c.glass * self.glass().pdf(wo, wi)
-        } else {
-            0.0
-        };
-        let (up_o, up_i) = to_upper(wo, wi);
-        if up_o.z <= 0.0 || up_i.z <= 0.0 {
-            return glass;
-        }
-        let diffuse = glass + c.diffuse * up_i.z * FRAC_1_PI;
-        if self.is_smooth() || c.specular <= 0.0 {
-            return diffuse;
-        }
-        diffuse + c.specular * microfacet::pdf(self.distribution(), wo, wi)
-    }
-
-    /// Picks a lobe with `u1`, samples it with `u2` (the glass reuses the
-    /// rest of `u1`), and returns the mixture's value and density.
-    /// The coat, when there is one, is picked first (its probability
-    /// from [`MetallicRoughness::coat_probability`]) and the rest of `u1`
-    /// picks among the base's lobes.
-    pub(super) fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
-        let choice = self.choice(wo);
-        let coat = self.coat_probability(wo, choice.as_ref());
-        let up_o = Vec3::new(wo.x, wo.y, wo.z.abs());
-        if u1 < coat {
-            if self.coat.is_smooth() {
-                return self.mirror_sample(wo, coat, choice.as_ref());
-            }
-            let wi = self.coat.sample(wo, u2)?;
-            return BsdfSample::of_mixture(wo, wi, BsdfFlags::GLOSSY, self.pdf(wo, wi), || {
-                self.f(wo, wi)
-            });
-        }
-        let c = choice?;
-        // Exactly `u1` without a coat (coat = 0).
-        let u1 = (u1 - coat) / (1.0 - coat);
-        let sign = if wo.z < 0.0 { -1.0 } else { 1.0 };
-        if u1 < c.specular && self.is_smooth() {
-            if coat > 0.0 {
-                return self.mirror_sample(wo, coat, Some(&c));
-            }
-            let weight = self.smooth_reflectance(up_o.z) / c.specular;
-            return delta_sample(reflect_local(wo), weight, c.specular, MIRROR_FLAGS);
-        }
-        let (wi, lobe) = if u1 < c.specular {
-            let wi = microfacet::sample_reflection(self.distribution(), wo, u2)?;
-            (wi, BsdfFlags::GLOSSY)
-        } else if u1 < c.specular + c.diffuse || c.glass <= 0.0 {
-            let w = square_to_cosine_hemisphere(u2);
-            (Vec3::new(w.x, w.y, sign * w.z), BsdfFlags::DIFFUSE)
-        } else {
-            let u = ((u1 - c.specular - c.diffuse) / c.glass).clamp(0.0, 1.0 - f32::EPSILON);
-            (self.glass().sample(wo, u, u2)?.wi, BsdfFlags::GLOSSY)
-        };
-        BsdfSample::of_mixture(wo, wi, lobe, self.pdf(wo, wi), || self.f(wo, wi))
-    }
-
-    /// The delta lobes at the mirror direction of `wo` with a coat (coat
-    /// probability `coat` > 0): a smooth coat, the base's smooth specular
-    /// layer dimmed by the coat, or both, each with its probability.
-    fn mirror_sample(&self, wo: Vec3, coat: f32, base: Option<&LobeChoice>) -> Option<BsdfSample> {
-        let cos = wo.z.abs();
-        let (mut reflectance, mut probability) = (Vec3::ZERO, 0.0);
-        if self.coat.is_smooth() {
-            reflectance += Vec3::splat(self.coat.reflected(cos));
-            probability += coat;
-        }
-        if let (Some(c), true) = (base, self.is_smooth()) {
-            reflectance += self.smooth_reflectance(cos) * self.coat.base_weight(cos, cos);
-            probability += (1.0 - coat) * c.specular;
-        }
-        delta_sample(
-            reflect_local(wo),
-            reflectance / probability,
-            probability,
-            MIRROR_FLAGS,
-        )
     }
 
     /// A representative colour: the base colour.
