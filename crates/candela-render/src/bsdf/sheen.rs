@@ -27,8 +27,9 @@
 //! and the base gets at most what the sheen leaves at `wo`.
 //!
 //! **Two guards keep the fit where it describes the lobe.** As α → 0 the
-//! fibre normals lie flat and the exact Smith Λ grows like 1/α at every
-//! angle; the fit does not (at α = 0.005 it is a third of the exact Λ), so
+//! fibre normals lie flat and the exact Smith Λ grows without bound at
+//! every angle; the fit does not (at α = 0.005 it is a third of the exact
+//! Λ), so
 //! for small α the lobe reflects more than it receives at grazing angles
 //! (an albedo of 1.07 at α = 0.05, 2.0 at α = 0.005, θo ≈ 89°), and it
 //! narrows to a rim of near-horizontal fibres that cosine sampling finds
