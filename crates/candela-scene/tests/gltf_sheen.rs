@@ -113,7 +113,7 @@ fn sheen_factors_and_textures_arrive() {
 }
 
 #[test]
-fn a_coloured_sheen_factor_on_a_texture_is_applied_as_its_mean() {
+fn a_coloured_sheen_factor_tints_its_texture_exactly() {
     let l = with_materials(
         "sheen-coloured-factor.gltf",
         json!([{"extensions": {"KHR_materials_sheen": {
@@ -121,8 +121,8 @@ fn a_coloured_sheen_factor_on_a_texture_is_applied_as_its_mean() {
     );
     let m = &l.scene.materials[0];
     let color = m.textures.get(TextureSlot::SheenColor).expect("texture");
-    assert!((color.scale - 0.5).abs() < 1e-6, "{}", color.scale);
-    assert!(l.report.mentions("sheenColorFactor"), "{}", l.report);
+    assert_eq!((color.tint, color.scale), (Vec3::new(0.9, 0.3, 0.3), 1.0));
+    assert!(!l.report.mentions("sheenColorFactor"), "{}", l.report);
 }
 
 #[test]

@@ -24,7 +24,8 @@ pub struct MetallicRoughnessSlots {
     pub clearcoat_roughness: Option<SlotTexture>,
     /// The sheen's colour (texel × tint × scale).
     pub sheen_color: Option<SlotTexture>,
-    /// The sheen's perceptual roughness (alpha by default, glTF's channel).
+    /// The sheen's perceptual roughness (R unless the slot names a channel;
+    /// glTF's loader names alpha).
     pub sheen_roughness: Option<SlotTexture>,
     /// The dielectric part's transmitted fraction.
     pub transmission: Option<SlotTexture>,
@@ -60,7 +61,7 @@ impl MetallicRoughnessSlots {
             )
             .with_sheen(
                 sheen,
-                value(&self.sheen_roughness, sheen_roughness, ALPHA_CHANNEL),
+                value(&self.sheen_roughness, sheen_roughness, DEFAULT_CHANNEL),
             )
             .with_clearcoat(
                 value(&self.clearcoat, coat, DEFAULT_CHANNEL),
