@@ -102,7 +102,10 @@ fn sheen_factors_and_textures_arrive() {
         (color.color_space, rough.color_space),
         (ColorSpace::Srgb, ColorSpace::Linear)
     );
-    assert!((color.scale - 0.6).abs() < 1e-6 && (rough.scale - 0.3).abs() < 1e-6);
+    // The colour factor is the colour texture's tint (scale 1), the
+    // roughness factor the roughness texture's scale.
+    assert_eq!((color.tint, color.scale), (Vec3::splat(0.6), 1.0));
+    assert!((rough.scale - 0.3).abs() < 1e-6);
     assert!(!color.uv.is_identity() && rough.uv.is_identity());
     assert!(rough
         .image_path()
