@@ -478,14 +478,13 @@ fn khr_texture_transform_places_every_texture_as_the_extension_says() {
     assert!(plain.is_identity());
 }
 
-#[test]
-fn sampler_wrap_modes_are_kept_per_axis() {
-    // 33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT, 10497 REPEAT (the
-    // default when a sampler or its field is absent).
+/// A material whose base colour, metallic-roughness and normal textures
+/// read one image through samplers 0, 1 and none, loaded.
+fn three_slots_with_samplers(name: &str, samplers: serde_json::Value) -> Loaded {
     let png = gltf::data_uri(b"\x89PNG not really");
     let text = gltf_text(|d| {
         d["images"] = json!([{"uri": png.replace("application/octet-stream", "image/png")}]);
-        d["samplers"] = json!([{"wrapS": 33071, "wrapT": 33648}, {"wrapT": 33071}]);
+        d["samplers"] = samplers;
         d["textures"] = json!([
             {"source": 0, "sampler": 0},
             {"source": 0, "sampler": 1},
@@ -498,7 +497,17 @@ fn sampler_wrap_modes_are_kept_per_axis() {
             "normalTexture": {"index": 2}
         }]);
     });
-    let l = load_ok(&write("samplers.gltf", &text));
+    load_ok(&write(name, &text))
+}
+
+#[test]
+fn sampler_wrap_modes_are_kept_per_axis() {
+    // 33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT, 10497 REPEAT (the
+    // default when a sampler or its field is absent).
+    let l = three_slots_with_samplers(
+        "samplers.gltf",
+        json!([{"wrapS": 33071, "wrapT": 33648}, {"wrapT": 33071}]),
+    );
     assert!(l.report.is_empty(), "{}", l.report);
     let t = &l.scene.materials[0].textures;
     let wrap = |slot| t.get(slot).expect("textured").wrap;
@@ -519,23 +528,10 @@ fn sampler_wrap_modes_are_kept_per_axis() {
 fn sampler_mag_filter_nearest_keeps_texels_sharp() {
     // 9728 NEAREST, 9729 LINEAR; the default (no sampler, or no magFilter)
     // is the renderer's bilinear filter.
-    let png = gltf::data_uri(b"\x89PNG not really");
-    let text = gltf_text(|d| {
-        d["images"] = json!([{"uri": png.replace("application/octet-stream", "image/png")}]);
-        d["samplers"] = json!([{"magFilter": 9728, "minFilter": 9729}, {"magFilter": 9729}]);
-        d["textures"] = json!([
-            {"source": 0, "sampler": 0},
-            {"source": 0, "sampler": 1},
-            {"source": 0}
-        ]);
-        d["materials"] = json!([{
-            "pbrMetallicRoughness": {
-                "baseColorTexture": {"index": 0},
-                "metallicRoughnessTexture": {"index": 1}},
-            "normalTexture": {"index": 2}
-        }]);
-    });
-    let l = load_ok(&write("mag_filter.gltf", &text));
+    let l = three_slots_with_samplers(
+        "mag_filter.gltf",
+        json!([{"magFilter": 9728, "minFilter": 9729}, {"magFilter": 9729}]),
+    );
     assert!(l.report.is_empty(), "{}", l.report);
     let t = &l.scene.materials[0].textures;
     let filter = |slot| t.get(slot).expect("textured").filter;

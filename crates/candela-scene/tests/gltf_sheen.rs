@@ -10,39 +10,20 @@ mod gltf;
 
 use candela_scene::{load, BsdfDesc, ColorSpace, LoadOptions, Loaded, TextureSlot};
 use glam::Vec3;
-use gltf::{gltf_text, write};
+use gltf::write;
 use serde_json::{json, Value};
 
 fn load_ok(path: &std::path::Path) -> Loaded {
     load(path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// A document requiring the extension, with one material per entry of
-/// `materials`, each on its own primitive, and two (unreadable) PNG
-/// textures.
+/// [`gltf::with_materials`] with the sheen (and texture transforms), the
+/// sheen also required, loaded.
 fn with_materials(name: &str, materials: Value) -> Loaded {
-    let png = gltf::data_uri(b"\x89PNG not really");
-    let n = materials.as_array().map_or(0, Vec::len);
-    let text = gltf_text(|d| {
-        d["extensionsUsed"] = json!(["KHR_materials_sheen", "KHR_texture_transform"]);
-        d["extensionsRequired"] = json!(["KHR_materials_sheen"]);
-        d["images"] = json!([
-            {"uri": png.replace("application/octet-stream", "image/png")},
-            {"uri": "sheen roughness.png"}
-        ]);
-        d["textures"] = json!([{"source": 0}, {"source": 1}]);
-        d["materials"] = materials;
-        let first = d["meshes"][0]["primitives"][0].clone();
-        let primitives: Vec<Value> = (0..n)
-            .map(|i| {
-                let mut p = first.clone();
-                p["material"] = json!(i);
-                p
-            })
-            .collect();
-        d["meshes"][0]["primitives"] = json!(primitives);
-    });
-    load_ok(&write(name, &text))
+    let text = gltf::with_materials(&["KHR_materials_sheen", "KHR_texture_transform"], materials);
+    let mut doc: Value = serde_json::from_slice(&text).expect("the test's own JSON");
+    doc["extensionsRequired"] = json!(["KHR_materials_sheen"]);
+    load_ok(&write(name, &serde_json::to_vec(&doc).expect("JSON")))
 }
 
 fn sheen_of(bsdf: &BsdfDesc) -> (Vec3, f32) {
@@ -109,7 +90,7 @@ fn sheen_factors_and_textures_arrive() {
     assert!(!color.uv.is_identity() && rough.uv.is_identity());
     assert!(rough
         .image_path()
-        .is_some_and(|p| p.ends_with("sheen roughness.png")));
+        .is_some_and(|p| p.ends_with("second texture.png")));
     assert!(m[1].textures.get(TextureSlot::SheenColor).is_none());
     // Nothing reported: neither the extension nor a grey factor.
     assert!(l.report.is_empty(), "{}", l.report);
