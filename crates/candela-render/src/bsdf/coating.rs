@@ -164,7 +164,7 @@ pub(crate) fn transmission_albedo(
 /// The mean over the visible normals m of `lobe(wo, m, wo·m) / G1(wo)` for
 /// the direction `wo` at cosine `mu`, by a `grid` × `grid` midpoint rule
 /// (`None`, a direction on the wrong side, counts 0).
-fn visible_normal_mean(
+pub(super) fn visible_normal_mean(
     dist: MicrofacetDistribution,
     mu: f32,
     grid: usize,

@@ -12,17 +12,20 @@
 //! B = ∫ (1 − wo·h)⁵ D G2 / (4 μo μi) μi dωi
 //! (the split Karis 2013 uses for prefiltered environment lighting). Both
 //! are tabulated over μ and α = roughness² once, on first use, by our own
-//! quadrature: a stratified grid of visible normals (Heitz 2018), whose
-//! weight per reflected direction is G2 / G1(wo). Their cosine-weighted
+//! quadrature: a stratified grid of visible normals (Heitz 2018;
+//! `coating.rs`'s `visible_normal_mean`, shared with the coating tables),
+//! whose weight per reflected direction is G2 / G1(wo). Their cosine-weighted
 //! hemispherical averages Ā = 2∫A μ dμ and B̄ likewise give the layer's
 //! average albedo Ē = F0 Ā + F90 B̄. At α = 0 (a delta layer) the row is
 //! exact: A = 1 − (1 − μ)⁵, B = (1 − μ)⁵, Schlick at μ itself.
 
 use std::sync::OnceLock;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
+use super::coating::visible_normal_mean;
 use super::distribution::MicrofacetDistribution;
+use super::metallic_roughness::schlick_weight;
 
 /// Grid points in μ = cos θ, from 0 to 1.
 const MU_STEPS: usize = 32;
@@ -42,8 +45,8 @@ pub(super) struct SpecularAlbedo {
 }
 
 impl SpecularAlbedo {
-    /// The table, built on first use (about 33k quadrature points per α
-    /// row; a few tens of milliseconds in all).
+    /// The table, built on first use (two 32 × 32 quadratures per grid
+    /// node, about 2M visible normals in all; a fraction of a second).
     pub(super) fn get() -> &'static Self {
         static TABLE: OnceLock<SpecularAlbedo> = OnceLock::new();
         TABLE.get_or_init(Self::build)
@@ -112,35 +115,19 @@ fn cell(x: f32, n: usize) -> (usize, usize, f32) {
 /// exact Schlick pair at α = 0.
 pub(super) fn split_albedo(mu: f32, alpha: f32) -> [f32; 2] {
     if alpha == 0.0 {
-        let s5 = schlick5(mu);
+        let s5 = schlick_weight(mu);
         return [1.0 - s5, s5];
     }
-    let mu = mu.max(MIN_MU);
-    let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
     let dist = MicrofacetDistribution::ggx(alpha);
-    let g1_o = dist.g1(wo);
-    let (mut a, mut b) = (0.0f64, 0.0f64);
-    for y in 0..QUADRATURE {
-        for x in 0..QUADRATURE {
-            let u = Vec2::new(
-                (x as f32 + 0.5) / QUADRATURE as f32,
-                (y as f32 + 0.5) / QUADRATURE as f32,
-            );
-            let h = dist.sample_visible_normal(wo, u);
-            let cos_oh = wo.dot(h);
-            let wi = 2.0 * cos_oh * h - wo;
-            if wi.z <= 0.0 || cos_oh <= 0.0 {
-                continue;
-            }
-            // f · μi / pdf for a visible-normal sample: G2 / G1(wo).
-            let weight = (dist.g2(wo, wi) / g1_o) as f64;
-            let s5 = schlick5(cos_oh) as f64;
-            a += (1.0 - s5) * weight;
-            b += s5 * weight;
-        }
-    }
-    let n = (QUADRATURE * QUADRATURE) as f64;
-    [(a / n) as f32, (b / n) as f32]
+    // f · μi / pdf for a visible-normal sample is G2 / G1(wo); the mean
+    // divides by G1, the part of Schlick's weight splits the numerator.
+    let part = |weight: fn(f32) -> f32| {
+        visible_normal_mean(dist, mu.max(MIN_MU), QUADRATURE, |wo, m, cos_om| {
+            let wi = 2.0 * cos_om * m - wo;
+            (wi.z > 0.0).then(|| weight(cos_om) * dist.g2(wo, wi))
+        })
+    };
+    [part(|c| 1.0 - schlick_weight(c)), part(schlick_weight)]
 }
 
 /// 2∫ v(μ) μ dμ over the grid (trapezoids), per component.
@@ -156,13 +143,6 @@ fn cosine_average(row: &[[f32; 2]]) -> [f32; 2] {
         }
     }
     sum.map(|s| s as f32)
-}
-
-/// (1 − cos)⁵.
-fn schlick5(cos: f32) -> f32 {
-    let m = (1.0 - cos).clamp(0.0, 1.0);
-    let m2 = m * m;
-    m2 * m2 * m
 }
 
 #[cfg(test)]

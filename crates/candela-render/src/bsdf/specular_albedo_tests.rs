@@ -20,7 +20,7 @@ fn by_uniform_directions(mu: f32, alpha: f32, n: u32, seed: u64) -> ([f64; 2], [
         let f = dist.d(h) * dist.g2(wo, wi) / (4.0 * wo.z * wi.z);
         // f μi / pdf with pdf = 1 / 2π.
         let v = (f * wi.z) as f64 * 2.0 * PI;
-        let s5 = schlick5(wo.dot(h)) as f64;
+        let s5 = schlick_weight(wo.dot(h)) as f64;
         for (c, x) in [(1.0 - s5) * v, s5 * v].into_iter().enumerate() {
             sum[c] += x;
             sum2[c] += x * x;

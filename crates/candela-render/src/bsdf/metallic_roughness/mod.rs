@@ -434,7 +434,7 @@ impl MetallicRoughness {
 }
 
 /// (1 − cos)⁵, Schlick's Fresnel weight.
-fn schlick_weight(cos: f32) -> f32 {
+pub(super) fn schlick_weight(cos: f32) -> f32 {
     let m = (1.0 - cos).clamp(0.0, 1.0);
     let m2 = m * m;
     m2 * m2 * m
