@@ -1,14 +1,17 @@
 //! `KHR_materials_clearcoat`'s coat on the glTF metallic-roughness BSDF
 //! (`metallic_roughness/`, which layers it over its other lobes; see its
-//! module docs for the whole model and why the weights differ from the
-//! extension's `fresnel_coat`).
+//! module docs for the whole model).
 //!
 //! The coat is a clear dielectric of IOR 1.5 (F0 = 0.04) on GGX microfacets
 //! with α = roughness², strength c in [0, 1]: a specular lobe
 //! c · S(wo·h) · D(h) · G2(wo, wi) / (4 cos θo cos θi) (Schlick's S at the
 //! half vector, height-correlated Smith G2, as the base's specular layer),
-//! a delta mirror of reflectance c · S(cos θo) at roughness 0. The values
-//! here are for a pair already mirrored to the side where `wo.z > 0`
+//! a delta mirror of reflectance c · S(cos θo) at roughness 0. What it
+//! reflects at `wo` is its directional albedo c · E(cos θo), the base
+//! specular layer's table with (F0, F90) = (0.04, 1) (`specular_albedo.rs`,
+//! the same lobe), exactly c · S(cos θo) for the smooth coat; the layers
+//! beneath get the rest, 1 − c · E(cos θo). The values here are for a pair
+//! already mirrored to the side where `wo.z > 0`
 //! (`metallic_roughness::to_upper`): the coat is two-sided, as the opaque
 //! lobes are.
 
@@ -16,6 +19,7 @@ use glam::{Vec2, Vec3};
 
 use super::distribution::MicrofacetDistribution;
 use super::microfacet;
+use super::specular_albedo::SpecularAlbedo;
 use super::BsdfFlags;
 
 /// The coat's Fresnel at normal incidence: ((1.5 − 1)/(1.5 + 1))².
@@ -75,18 +79,31 @@ impl ClearCoat {
         MicrofacetDistribution::ggx(self.roughness * self.roughness)
     }
 
-    /// c · S(cos): the share of light the coat reflects at `cos` (exactly
-    /// the smooth coat's reflectance; the lobe-choice weight of either).
+    /// c · S(cos): the smooth coat's reflectance at `cos`.
     pub(super) fn reflected(&self, cos: f32) -> f32 {
         let m = (1.0 - cos).clamp(0.0, 1.0);
         let m2 = m * m;
         self.factor * (F0 + (1.0 - F0) * m2 * m2 * m)
     }
 
-    /// What the coat lets through to and back from the base:
-    /// (1 − c S(cos θo)) (1 − c S(cos θi)), symmetric in the two directions.
-    pub(super) fn base_weight(&self, cos_o: f32, cos_i: f32) -> f32 {
-        (1.0 - self.reflected(cos_o)) * (1.0 - self.reflected(cos_i))
+    /// c · E(cos): the share of the light arriving along `cos` that the
+    /// coat reflects (its directional albedo; exactly
+    /// [`ClearCoat::reflected`] for the smooth coat).
+    pub(super) fn albedo(&self, cos: f32) -> f32 {
+        if self.is_smooth() {
+            return self.reflected(cos);
+        }
+        let alpha = self.roughness * self.roughness;
+        let [a, b] = SpecularAlbedo::get().split(cos, alpha);
+        self.factor * (F0 * a + b)
+    }
+
+    /// What the coat leaves to the layers beneath it seen from `cos_o`:
+    /// 1 − c E(cos θo). Taken at the viewing direction only, as the
+    /// extension's `fresnel_coat` and Blender Cycles' coat do, so a coat
+    /// over a base of albedo a at `wo` reflects exactly c E + (1 − c E) a.
+    pub(super) fn base_weight(&self, cos_o: f32) -> f32 {
+        1.0 - self.albedo(cos_o)
     }
 
     /// The rough coat's value for an upper pair (0 for a smooth coat, whose

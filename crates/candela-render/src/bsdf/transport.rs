@@ -20,7 +20,12 @@
 //!   importance mode (pbrt-v4's `CorrectShadingNormal`, in our convention:
 //!   `wo` toward where the particle came from, `wi` where it goes).
 //!
-//! Both are checked by the adjoint relation
+//! - **Non-reciprocal models** (the glTF clear coat, which dims the layers
+//!   beneath by the view alone, as the extension and Blender Cycles do):
+//!   the adjoint is evaluated by its definition, f with `wo` and `wi`
+//!   swapped, since no scalar factor relates the two values.
+//!
+//! All are checked by the adjoint relation
 //! f_importance(wo, wi)·(kernel factors) = f_radiance(wi, wo)·(kernel
 //! factors) in `transport_tests.rs`.
 
@@ -69,6 +74,9 @@ impl Bsdf {
         if let Bsdf::Blend(b) = self {
             return b.f_mode(wo, wi, mode); // each part its own factor
         }
+        if self.evaluates_adjoint_swapped(mode) {
+            return self.f(wi, wo);
+        }
         self.f(wo, wi) * self.adjoint_scale(wo, wi, mode)
     }
 
@@ -85,8 +93,25 @@ impl Bsdf {
             return b.sample_mode(wo, u1, u2, mode); // each part its own factor
         }
         let mut s = self.sample(wo, u1, u2)?;
-        s.f *= self.adjoint_scale(wo, s.wi, mode);
+        if self.evaluates_adjoint_swapped(mode) && !s.is_specular() {
+            // A delta sample's value is symmetric: mirror reflection keeps
+            // the angle (and these models refract only through rough lobes).
+            s.f = self.f(s.wi, wo);
+        } else {
+            s.f *= self.adjoint_scale(wo, s.wi, mode);
+        }
         Some(s)
+    }
+
+    /// Whether the adjoint in `mode` is the radiance BSDF with `wo` and
+    /// `wi` swapped, f*(wo, wi) = f(wi, wo), evaluated as such: in
+    /// importance mode, for a model whose value is not reciprocal (a glTF
+    /// clear coat dims what lies beneath by the view alone), where no
+    /// scalar factor turns f(wo, wi) into f(wi, wo). The swap includes
+    /// refraction's η² by definition.
+    fn evaluates_adjoint_swapped(&self, mode: TransportMode) -> bool {
+        mode == TransportMode::Importance
+            && matches!(self, Bsdf::MetallicRoughness(m) if !m.is_reciprocal())
     }
 
     /// The factor from the radiance BSDF to the mode's: η² for a

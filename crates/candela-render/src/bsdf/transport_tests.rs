@@ -151,6 +151,73 @@ fn sample_mode_scales_only_transmission_in_importance_mode() {
     assert_eq!(seen, [true, true], "both lobes sampled");
 }
 
+/// glTF materials under a clear coat, whose weight on the layers beneath
+/// reads the view alone: opaque (rough and smooth coats) and transmissive.
+fn coated_bsdfs() -> Vec<(&'static str, Bsdf)> {
+    let coated = |metallic: f32, roughness: f32, transmission: f32, coat: (f32, f32)| {
+        Bsdf::MetallicRoughness(
+            MetallicRoughness::new(
+                Vec3::new(0.8, 0.6, 0.4),
+                metallic,
+                roughness,
+                transmission,
+                1.5,
+            )
+            .with_clearcoat(coat.0, coat.1),
+        )
+    };
+    vec![
+        (
+            "rough coat over dielectric",
+            coated(0.0, 0.5, 0.0, (1.0, 0.3)),
+        ),
+        ("smooth coat over metal", coated(1.0, 0.4, 0.0, (0.8, 0.0))),
+        ("rough coat over glass", coated(0.0, 0.4, 0.8, (1.0, 0.2))),
+    ]
+}
+
+#[test]
+fn a_coated_models_importance_is_its_radiance_with_directions_swapped() {
+    let mut asymmetric = 0;
+    for (name, bsdf) in coated_bsdfs() {
+        for (wo, wi) in direction_pairs(4000, 17) {
+            let importance = bsdf.f_mode(wo, wi, TransportMode::Importance);
+            assert_close(
+                importance,
+                bsdf.f_mode(wi, wo, TransportMode::Radiance),
+                name,
+            );
+            let radiance = bsdf.f_mode(wo, wi, TransportMode::Radiance);
+            if wo.z * wi.z > 0.0
+                && (radiance - importance).abs().max_element() > 1e-2 * importance.max_element()
+            {
+                asymmetric += 1;
+            }
+        }
+        // Sampled values are the mode's too, at the same directions and
+        // densities.
+        let wo = Vec3::new(0.5, -0.1, 0.6).normalize();
+        let mut sampler = Sampler::new(SamplerKind::Independent, 5);
+        for i in 0..512 {
+            sampler.start_pixel_sample(0, 0, i);
+            let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
+            let (Some(r), Some(m)) = (
+                bsdf.sample_mode(wo, u1, u2, TransportMode::Radiance),
+                bsdf.sample_mode(wo, u1, u2, TransportMode::Importance),
+            ) else {
+                continue;
+            };
+            assert_eq!((r.wi, r.pdf), (m.wi, m.pdf), "{name}");
+            if !m.is_specular() {
+                assert_close(m.f, bsdf.f_mode(wo, m.wi, TransportMode::Importance), name);
+            }
+        }
+    }
+    // Reflected pairs whose two values differ: without the swap the
+    // adjoint would be wrong, so the test has teeth.
+    assert!(asymmetric > 1000, "only {asymmetric} asymmetric pairs");
+}
+
 /// The scattering kernel per unit projected solid angle of the *true*
 /// surface, as a path carrying `mode` applies it: f · |wi·ns| / |wi·ng|,
 /// times the shading-normal correction of the mode.

@@ -74,6 +74,38 @@ pub fn cs184_box_filtered(file: &str, filter: &str) -> Scene {
     scene
 }
 
+/// A CS184 box with every diffuse material made a glTF one of the same
+/// colour under a rough clear coat (`KHR_materials_clearcoat`): a rough
+/// dielectric base, a coat of roughness 0.1. The coat dims the layers
+/// beneath by its albedo at the view alone (not reciprocal), so light
+/// subpaths must evaluate its adjoint (the directions swapped) to converge
+/// to the camera paths' image. Rough lobes only: every estimator, the
+/// light tracer too, reaches every surface.
+pub fn cs184_box_coated(file: &str) -> Scene {
+    let mut desc = load_file(super::cs184(file));
+    let mut coated = 0;
+    for m in &mut desc.materials {
+        if let BsdfDesc::Diffuse { albedo } = m.bsdf {
+            m.bsdf = BsdfDesc::MetallicRoughness {
+                base_color: albedo,
+                metallic: 0.0,
+                roughness: 0.5,
+                transmission: 0.0,
+                ior: 1.5,
+                specular: 1.0,
+                specular_color: Vec3::ONE,
+                clearcoat: 1.0,
+                clearcoat_roughness: 0.1,
+                sheen_color: Vec3::ZERO,
+                sheen_roughness: 0.0,
+            };
+            coated += 1;
+        }
+    }
+    assert!(coated >= 3, "only {coated} materials coated");
+    build(&desc, &options(CameraMode::Cs184))
+}
+
 /// One of the project's Mitsuba scenes (`scenes/mitsuba/`) through its
 /// own camera.
 pub fn mitsuba_box(file: &str) -> Scene {

@@ -30,8 +30,9 @@
 //!   every sheen term is skipped: exactly the sheenless model;
 //! - `KHR_materials_clearcoat`, with strength c and a coat of perceptual
 //!   roughness r_c (`clear_coat.rs`: GGX with α = r_c², F0 = 0.04):
-//!   f = (1 − c S(0.04, |cos θo|)) (1 − c S(0.04, |cos θi|)) · f_under +
-//!   c S(0.04, wo·h) · D_c(h) G2_c(wo, wi) / (4 cos θo cos θi).
+//!   f = (1 − c E_c(|cos θo|)) · f_under +
+//!   c S(0.04, wo·h) · D_c(h) G2_c(wo, wi) / (4 cos θo cos θi), with E_c
+//!   the coat lobe's directional albedo.
 //!   At c = 0 every coat term is skipped: exactly the uncoated model.
 //!
 //! **Lambert's weight.** The spec's `fresnel_mix` weights the base by
@@ -60,26 +61,32 @@
 //! **The coat's weights.** The extension layers the coat as
 //! mix(base, coat, c · S(0.04, N·V)): the base is dimmed by
 //! 1 − c S(cos θo) and the coat's specular lobe is scaled by
-//! c S(cos θo), both at the viewing direction only, which is not
-//! reciprocal (the value changes when wo and wi swap). Here the coat's
+//! c S(cos θo), both at the viewing direction only. Here the coat's
 //! Fresnel is taken at the half vector, as the base's specular layer does
-//! (wo·h = wi·h, and for a smooth coat h is the normal, so it is exactly
-//! the spec's c S(cos θo)), and the base is dimmed once per crossing of
-//! the coat, (1 − c S(cos θo)) (1 − c S(cos θi)): symmetric, so reciprocal,
-//! and energy conserving, since the base gets at most the 1 − c S(cos θo)
-//! the coat leaves at wo (the look at wo is the spec's; the second factor
-//! is at least 1 − c at grazing wi and 0.96 or more over most of the
-//! cosine-weighted hemisphere). Not renormalised as the Lambert weight is:
-//! the base may be a metal, whose lobe would then exceed 1. The coat
-//! follows the shading normal (the extension's own coat normal map is
-//! reported by the loader), and it dims neither emission nor the
-//! transmitted light's colour beyond these weights.
+//! (for a smooth coat h is the normal, so it is exactly the spec's
+//! c S(cos θo)), and the base is dimmed by what the coat reflects at the
+//! viewing direction, its directional albedo c E_c(cos θo) (`clear_coat.rs`;
+//! exactly c S(cos θo) for a smooth coat, less for a rough one at grazing
+//! angles, where masking keeps its lobe far below S): the spec's look, and
+//! Blender Cycles' coat, which attenuates the layers beneath by the coat's
+//! albedo at the view alone. Energy is conserved at every `wo` (the coat
+//! reflects c E_c, the base at most its own albedo times the 1 − c E_c the
+//! coat leaves), and a white dielectric under any coat reflects all the
+//! light. The weight is not reciprocal (it reads `wo` only); light
+//! subpaths use the adjoint, f evaluated with the two directions swapped
+//! (`transport.rs`). Dimming the base once per crossing of the coat instead,
+//! (1 − c S(cos θo))(1 − c S(cos θi)), as this model did before, lost what
+//! the light bouncing between coat and base would return: a coated sphere
+//! lit by an area lamp was 11% darker than Cycles' (BENCHMARKS.md, "glTF
+//! against Blender Cycles"). The coat follows the shading normal (the
+//! extension's own coat normal map is reported by the loader), and it dims
+//! neither emission nor the transmitted light's colour beyond this weight.
 //!
 //! **The sheen between them.** "The base" of the coat's weights is then
 //! everything beneath the coat, sheen included. The sheen's own scaling
-//! is the extension's min form, which is already symmetric; like the
-//! coat's, it also dims the transmitted lobe (at |cos θi| on the far
-//! side), and the sheen lobe is two-sided like the opaque lobes. A smooth
+//! is the extension's min form, which is already symmetric; it also dims
+//! the transmitted lobe (at |cos θi| on the far side), as the coat does at
+//! the viewing side, and the sheen lobe is two-sided like the opaque lobes. A smooth
 //! specular layer under a sheen stays a delta lobe, dimmed by
 //! 1 − max(k_s) E(cos θo) (the mirror direction has the same cosine).
 //!
@@ -101,7 +108,7 @@
 //! rough dielectric with α clamped to [`MIN_ALPHA`](super::MIN_ALPHA).
 //!
 //! Sampling (`sampling.rs`) picks a lobe with probabilities that depend on `wo` only
-//! (the lobes' approximate albedos: c S(0.04, cos θo) for the coat, the
+//! (the lobes' approximate albedos: c E_c(cos θo) for the coat, the
 //! rest shared by the sheen, luminance(k_s) E(cos θo), and the base's
 //! lobes dimmed by 1 − max(k_s) E(cos θo), as their weights say; Schlick at cos θo
 //! for the specular lobe, the rest of the dielectric's weight times the base's luminance for
@@ -215,6 +222,14 @@ impl MetallicRoughness {
     /// The clear coat's strength and perceptual roughness.
     pub fn clearcoat(&self) -> (f32, f32) {
         self.coat.parameters()
+    }
+
+    /// Whether f(wo, wi) = f(wi, wo) up to refraction's η² (generalised
+    /// reciprocity): true but with a coat, whose weight reads `wo` alone
+    /// (see the module docs), so that light subpaths must evaluate the
+    /// model with the two directions swapped.
+    pub fn is_reciprocal(&self) -> bool {
+        !self.coat.is_on()
     }
 
     /// The same material with `KHR_materials_sheen`'s colour
@@ -382,7 +397,7 @@ impl MetallicRoughness {
             return base;
         }
         let (up_o, up_i) = to_upper(wo, wi);
-        base * self.coat.base_weight(up_o.z, up_i.z.abs()) + Vec3::splat(self.coat.f(up_o, up_i))
+        base * self.coat.base_weight(up_o.z) + Vec3::splat(self.coat.f(up_o, up_i))
     }
 
     /// `base`'s value under the sheen: dimmed by it, plus the sheen's own

@@ -75,14 +75,14 @@ impl MetallicRoughness {
         (if total > 0.0 { sheen / total } else { 0.0 }, total)
     }
 
-    /// The probability of sampling the coat at `wo`: its share c S(cos θo)
+    /// The probability of sampling the coat at `wo`: its albedo c E(cos θo)
     /// against what it leaves to the layers beneath (their approximate
     /// albedo `under.total`); 0 without a coat.
     fn coat_probability(&self, wo: Vec3, under: &UnderCoat) -> f32 {
         if !self.coat.is_on() {
             return 0.0;
         }
-        let coat = self.coat.reflected(wo.z.abs());
+        let coat = self.coat.albedo(wo.z.abs());
         let rest = (1.0 - coat) * under.total;
         coat / (coat + rest)
     }
@@ -192,7 +192,7 @@ impl MetallicRoughness {
             probability += coat;
         }
         if let (Some(c), true) = (&under.base, self.is_smooth()) {
-            let mut base = self.smooth_reflectance(cos) * self.coat.base_weight(cos, cos);
+            let mut base = self.smooth_reflectance(cos) * self.coat.base_weight(cos);
             if self.sheen.is_on() {
                 base *= self.sheen.base_weight(cos, cos);
             }
