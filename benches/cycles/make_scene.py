@@ -76,7 +76,10 @@ def main(out):
         material("gold", (1.0, 0.77, 0.34), metallic=1.0, roughness=0.3),
         material("mirror", (0.95, 0.95, 0.95), metallic=1.0, roughness=0.0),
         material("glass", (1.0, 1.0, 1.0), transmission=1.0, roughness=0.0),
-        material("coated", (0.1, 0.2, 0.8), roughness=0.6, coat=1.0),
+        # Coat roughness 0.1, not Blender's default 0.03: the exporter leaves
+        # 0.03 out of the file (glTF's default 0, a smooth coat), and the
+        # importer then keeps 0.03, so Cycles would render another coat.
+        material("coated", (0.1, 0.2, 0.8), roughness=0.6, coat=1.0, coat_roughness=0.1),
         material("velvet", (0.3, 0.05, 0.1), roughness=1.0, sheen=1.0,
                  sheen_tint=(1.0, 0.9, 0.9), sheen_roughness=0.5),
         material("textured", (1, 1, 1), roughness=0.7, image=checker_image()),
