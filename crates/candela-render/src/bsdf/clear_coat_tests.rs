@@ -59,6 +59,10 @@ fn cases() -> Vec<(&'static str, Bsdf)> {
             "rough coat over glass",
             coated(orange, 0.0, 0.4, 0.7, (1.0, 0.3)),
         ),
+        (
+            "smooth coat over smooth glass",
+            coated(orange, 0.0, 0.0, 0.7, (0.9, 0.0)),
+        ),
     ]
 }
 

@@ -58,7 +58,46 @@ fn cases() -> Vec<(&'static str, Bsdf)> {
             "smooth weak specular",
             specular(mr(orange, 0.3, 0.0, 0.0), 0.5),
         ),
+        // Delta glass, mirror and metal beside the diffuse lobe.
+        ("smooth transmissive", mr(orange, 0.2, 0.0, 0.6)),
     ]
+}
+
+#[test]
+fn a_smooth_fully_transmissive_material_is_the_smooth_glass() {
+    // Roughness 0, transmission 1: Fresnel-weighted reflection and
+    // refraction, the same directions, probabilities and weights as
+    // `Bsdf::Glass` of transmittance = base colour.
+    let tint = Vec3::new(0.9, 0.7, 0.5);
+    let gltf = mr(tint, 0.0, 0.0, 1.0);
+    let glass = Bsdf::Glass {
+        reflectance: Vec3::ONE,
+        transmittance: tint,
+        ior: 1.5,
+    };
+    assert_eq!(gltf.flags(), glass.flags());
+    let mut sampler = Sampler::new(SamplerKind::Independent, 21);
+    let mut refracted = 0;
+    for wo in test_directions() {
+        for i in 0..500 {
+            let (u1, u2) = uniforms(&mut sampler, i);
+            let (a, b) = (gltf.sample(wo, u1, u2), glass.sample(wo, u1, u2));
+            let (Some(a), Some(b)) = (a, b) else {
+                assert_eq!(a.is_none(), b.is_none(), "{wo} {u1}");
+                continue;
+            };
+            assert_eq!((a.wi, a.flags), (b.wi, b.flags), "{wo} {u1}");
+            assert!((a.pdf - b.pdf).abs() <= 1e-6 * b.pdf, "{wo} {u1}");
+            assert!(
+                (a.weight() - b.weight()).abs().max_element() <= 1e-6,
+                "{wo} {u1}: {} vs {}",
+                a.weight(),
+                b.weight()
+            );
+            refracted += a.flags.is_transmission() as u32;
+        }
+    }
+    assert!(refracted > 1000, "{refracted} refractions");
 }
 
 /// `KHR_materials_specular` on `bsdf`: strength `factor`, a blue-green

@@ -45,7 +45,7 @@ pub(super) fn sample_mirror(reflectance: Vec3, wo: Vec3) -> Option<BsdfSample> {
 
 /// The refracted direction of `wo` and the relative IOR η (far side over
 /// near side), entering when `wo.z > 0`, leaving when `wo.z < 0`.
-fn refract_local(wo: Vec3, ior: f32) -> Option<(Vec3, f32)> {
+pub(super) fn refract_local(wo: Vec3, ior: f32) -> Option<(Vec3, f32)> {
     let (normal, eta) = if wo.z > 0.0 {
         (Vec3::Z, ior)
     } else {

@@ -93,12 +93,17 @@ impl Bsdf {
             return b.sample_mode(wo, u1, u2, mode); // each part its own factor
         }
         let mut s = self.sample(wo, u1, u2)?;
-        if self.evaluates_adjoint_swapped(mode) && !s.is_specular() {
-            // A delta sample's value is symmetric: mirror reflection keeps
-            // the angle (and these models refract only through rough lobes).
-            s.f = self.f(s.wi, wo);
-        } else {
-            s.f *= self.adjoint_scale(wo, s.wi, mode);
+        match self {
+            Bsdf::MetallicRoughness(m) if self.evaluates_adjoint_swapped(mode) => {
+                if s.is_specular() {
+                    // A delta lobe has no value to swap: its weight's
+                    // factors of the view, taken at the other direction.
+                    s.f *= self.adjoint_scale(wo, s.wi, mode) * m.delta_adjoint_scale(wo, s.wi);
+                } else {
+                    s.f = self.f(s.wi, wo);
+                }
+            }
+            _ => s.f *= self.adjoint_scale(wo, s.wi, mode),
         }
         Some(s)
     }

@@ -104,8 +104,18 @@
 //! leaves `f` and `pdf` (which keep the diffuse lobe) and is sampled with
 //! its discrete probability, as the smooth plastic's coating is. Metallic
 //! 1, roughness 0, white base is then exactly [`Bsdf::Mirror`](super::Bsdf::Mirror)
-//! of reflectance 1 (Schlick's S(1) = 1). The transmitted lobe stays a
-//! rough dielectric with α clamped to [`MIN_ALPHA`](super::MIN_ALPHA).
+//! of reflectance 1 (Schlick's S(1) = 1). The transmitted lobe is then the
+//! smooth dielectric (the exact Fresnel F reflects, 1 − F refracts with
+//! transmittance c/η²; with full transmission exactly [`Bsdf::Glass`](super::Bsdf::Glass)),
+//! also sampled only: a delta light is not seen through or in it, as in
+//! Blender Cycles and Mitsuba, where a rough dielectric of α clamped to
+//! [`MIN_ALPHA`](super::MIN_ALPHA), as this model had before, drew the
+//! tiny, very bright reflections and refractions of punctual lights that no
+//! other renderer draws (a glass sphere under a sun and a point light was
+//! 5% brighter than Cycles' from those alone; BENCHMARKS.md, "glTF against
+//! Blender Cycles"), and noisily. A smooth glass's reflection shares the
+//! mirror direction with the specular layer and a smooth coat: a sample
+//! there carries all three.
 //!
 //! Sampling (`sampling.rs`) picks a lobe with probabilities that depend on `wo` only
 //! (the lobes' approximate albedos: c E_c(cos θo) for the coat, the
@@ -289,7 +299,7 @@ impl MetallicRoughness {
         if self.glass_weight() > 0.0 {
             flags = flags
                 .union(BsdfFlags::TRANSMISSION)
-                .union(BsdfFlags::GLOSSY);
+                .union(self.specular_lobe_flag());
         }
         if self.sheen.is_on() {
             flags = flags.union(BsdfFlags::GLOSSY);
@@ -411,7 +421,8 @@ impl MetallicRoughness {
 
     /// The uncoated model's value.
     fn base_f(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        let glass = if self.glass_weight() > 0.0 {
+        // A smooth glass is a delta lobe: sampled only.
+        let glass = if self.glass_weight() > 0.0 && !self.is_smooth() {
             self.glass().f(wo, wi) * self.glass_weight()
         } else {
             Vec3::ZERO
@@ -432,6 +443,22 @@ impl MetallicRoughness {
         let specular = dist.d(h) * dist.g2(wo, wi) / (4.0 * wo.z * wi.z);
         let dielectric = self.dielectric_schlick(s5) * specular + lambert;
         glass + self.metallic * self.metal_schlick(s5) * specular + w * dielectric
+    }
+
+    /// The factor that turns a delta sample's radiance value into its
+    /// adjoint's beyond refraction's η² (`transport.rs`): the coat's weight
+    /// at `wi` over its weight at `wo`, which differ only for a refraction
+    /// (a mirror keeps the angle); 1 without a coat.
+    pub(in crate::bsdf) fn delta_adjoint_scale(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if !self.coat.is_on() {
+            return 1.0;
+        }
+        let at_o = self.coat.base_weight(wo.z.abs());
+        if at_o > 0.0 {
+            self.coat.base_weight(wi.z.abs()) / at_o
+        } else {
+            0.0
+        }
     }
 
     /// The delta layer's reflectance at `wo` (roughness 0): the metal's

@@ -7,8 +7,11 @@ use std::f32::consts::FRAC_1_PI;
 
 use glam::{Vec2, Vec3};
 
+use super::super::fresnel::fresnel_dielectric;
 use super::super::microfacet;
-use super::super::specular::{delta_sample, reflect_local, MIRROR_FLAGS};
+use super::super::specular::{
+    delta_sample, reflect_local, refract_local, MIRROR_FLAGS, REFRACTION_FLAGS,
+};
 use super::super::{BsdfFlags, BsdfSample};
 use super::{luminance, schlick_weight, to_upper, MetallicRoughness};
 use crate::sampling::warp::square_to_cosine_hemisphere;
@@ -112,7 +115,7 @@ impl MetallicRoughness {
 
     /// The base lobes' density, chosen as `c` says.
     fn base_pdf(&self, c: &LobeChoice, wo: Vec3, wi: Vec3) -> f32 {
-        let glass = if c.glass > 0.0 {
+        let glass = if c.glass > 0.0 && !self.is_smooth() {
             c.glass * self.glass().pdf(wo, wi)
         } else {
             0.0
@@ -160,10 +163,10 @@ impl MetallicRoughness {
         }
         let c = under.base.as_ref()?;
         let u1 = (u1 - under.sheen) / (1.0 - under.sheen);
+        if self.is_smooth() && c.glass > 0.0 && (u1 < c.specular || u1 >= c.specular + c.diffuse) {
+            return self.smooth_sample(wo, u1, coat, &under, c);
+        }
         if u1 < c.specular && self.is_smooth() {
-            if coat > 0.0 || under.sheen > 0.0 {
-                return self.mirror_sample(wo, coat, &under);
-            }
             let weight = self.smooth_reflectance(up_o.z) / c.specular;
             return delta_sample(reflect_local(wo), weight, c.specular, MIRROR_FLAGS);
         }
@@ -180,10 +183,45 @@ impl MetallicRoughness {
         BsdfSample::of_mixture(wo, wi, lobe, self.pdf(wo, wi), || self.f(wo, wi))
     }
 
-    /// The delta lobes at the mirror direction of `wo` with a coat or a
-    /// sheen (coat probability `coat`, the layers beneath `under`): a
-    /// smooth coat, the base's smooth specular layer dimmed by the sheen
-    /// and the coat, or both, each with its probability.
+    /// A delta lobe of the smooth base picked by `u1` (already past the
+    /// coat and the sheen): the specular layer (`u1 < c.specular`) or the
+    /// smooth glass (past the specular and diffuse shares), which
+    /// reflects with the exact dielectric Fresnel F at cos θo (1 under
+    /// total internal reflection) and refracts otherwise. Reflections go
+    /// to [`MetallicRoughness::mirror_sample`], which sums every delta lobe
+    /// in the mirror direction; a refraction carries the glass's
+    /// transmittance (the base colour) over η², dimmed by the sheen and the
+    /// coat.
+    fn smooth_sample(
+        &self,
+        wo: Vec3,
+        u1: f32,
+        coat: f32,
+        under: &UnderCoat,
+        c: &LobeChoice,
+    ) -> Option<BsdfSample> {
+        if u1 < c.specular {
+            return self.mirror_sample(wo, coat, under);
+        }
+        let fresnel = fresnel_dielectric(wo.z, self.ior);
+        let u = ((u1 - c.specular - c.diffuse) / c.glass).clamp(0.0, 1.0);
+        if u < fresnel {
+            return self.mirror_sample(wo, coat, under);
+        }
+        let (wi, eta) = refract_local(wo, self.ior)?;
+        let mut weight = self.base_color * (self.glass_weight() * (1.0 - fresnel) / (eta * eta));
+        weight *= self.coat.base_weight(wo.z.abs());
+        if self.sheen.is_on() {
+            weight *= self.sheen.base_weight(wo.z.abs(), wi.z.abs());
+        }
+        let probability = (1.0 - coat) * (1.0 - under.sheen) * c.glass * (1.0 - fresnel);
+        delta_sample(wi, weight / probability, probability, REFRACTION_FLAGS)
+    }
+
+    /// The delta lobes at the mirror direction of `wo` (coat probability
+    /// `coat`, the layers beneath `under`): a smooth coat, the base's
+    /// smooth specular layer and its smooth glass's reflection, dimmed by
+    /// the sheen and the coat, each with its probability.
     fn mirror_sample(&self, wo: Vec3, coat: f32, under: &UnderCoat) -> Option<BsdfSample> {
         let cos = wo.z.abs();
         let (mut reflectance, mut probability) = (Vec3::ZERO, 0.0);
@@ -192,12 +230,19 @@ impl MetallicRoughness {
             probability += coat;
         }
         if let (Some(c), true) = (&under.base, self.is_smooth()) {
-            let mut base = self.smooth_reflectance(cos) * self.coat.base_weight(cos);
+            let fresnel = if c.glass > 0.0 {
+                fresnel_dielectric(wo.z, self.ior)
+            } else {
+                0.0
+            };
+            let mut base =
+                self.smooth_reflectance(cos) + Vec3::splat(self.glass_weight() * fresnel);
+            base *= self.coat.base_weight(cos);
             if self.sheen.is_on() {
                 base *= self.sheen.base_weight(cos, cos);
             }
             reflectance += base;
-            probability += (1.0 - coat) * (1.0 - under.sheen) * c.specular;
+            probability += (1.0 - coat) * (1.0 - under.sheen) * (c.specular + c.glass * fresnel);
         }
         delta_sample(
             reflect_local(wo),
