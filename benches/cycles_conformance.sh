@@ -35,19 +35,19 @@ quiet() { "$@" > "$work/last.log" 2>&1 || { cat "$work/last.log" >&2; exit 1; };
 mean() { "$py" -c "import OpenEXR,sys; print(OpenEXR.File(sys.argv[1]).channels()['RGB'].pixels.mean())" "$1"; }
 
 echo "## plane sweep: radiance (mean of 16x16 px), $spp spp"
-echo "| elevation | specular | roughness | coat | Candela | Cycles | Candela / Cycles | Lambert, analytic |"
-echo "|---:|---:|---:|---:|---:|---:|---:|---:|"
-for case in "0 1 0" "1 1 0" "1 0.5 0" "1 1 1"; do
-    read -r spec rough coat <<< "$case"
+echo "| elevation | specular | roughness | coat | metallic | Candela | Cycles | Candela / Cycles | Lambert, analytic |"
+echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+for case in "0 1 0 0" "1 1 0 0" "1 0.5 0 0" "1 1 1 0" "1 1 0 1" "1 0.5 0 1"; do
+    read -r spec rough coat metal <<< "$case"
     for elev in 90 45 20; do
-        python3 "$here/cycles/plane_scene.py" "$work/plane.gltf" "$elev" "$spec" "$rough" "$coat"
+        python3 "$here/cycles/plane_scene.py" "$work/plane.gltf" "$elev" "$spec" "$rough" "$coat" 0.5 "$metal"
         quiet "$py" "$here/cycles/render_cycles.py" "$work/plane.gltf" "$work/plane_cycles.exr" 16 16 "$spp"
         quiet "$candela" -q -s "$spp" -m 64 -r 16 16 -f "$work/plane_candela.exr" "$work/plane.gltf"
         a=$(mean "$work/plane_candela.exr")
         b=$(mean "$work/plane_cycles.exr")
-        lambert=$([ "$spec" = 0 ] && [ "$coat" = 0 ] && python3 -c "import math; print(f'{0.5 / math.pi * 0.8 / math.sqrt(0.77):.5f}')" || echo "")
-        python3 -c "import sys; a, b = float(sys.argv[1]), float(sys.argv[2]); print(f'| {sys.argv[3]}° | {sys.argv[4]} | {sys.argv[5]} | {sys.argv[6]} | {a:.5f} | {b:.5f} | {a / b:.3f} | {sys.argv[7]} |')" \
-            "$a" "$b" "$elev" "$spec" "$rough" "$coat" "$lambert"
+        lambert=$([ "$spec" = 0 ] && [ "$coat" = 0 ] && [ "$metal" = 0 ] && python3 -c "import math; print(f'{0.5 / math.pi * 0.8 / math.sqrt(0.77):.5f}')" || echo "")
+        python3 -c "import sys; a, b = float(sys.argv[1]), float(sys.argv[2]); print(f'| {sys.argv[3]}° | {sys.argv[4]} | {sys.argv[5]} | {sys.argv[6]} | {sys.argv[7]} | {a:.5f} | {b:.5f} | {a / b:.3f} | {sys.argv[8]} |')" \
+            "$a" "$b" "$elev" "$spec" "$rough" "$coat" "$metal" "$lambert"
     done
 done
 

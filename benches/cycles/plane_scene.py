@@ -1,8 +1,9 @@
 """Writes a one-plane glTF scene for angle sweeps against Cycles.
 
-    python3 plane_scene.py OUT.gltf ELEVATION_DEG [SPECULAR ROUGHNESS COAT BASE]
+    python3 plane_scene.py OUT.gltf ELEVATION_DEG [SPECULAR ROUGHNESS COAT BASE METALLIC]
 
 A 100-unit plane of the glTF metallic-roughness material (base colour BASE,
+metalness METALLIC (0 by default),
 `KHR_materials_specular`'s specularFactor SPECULAR, roughness ROUGHNESS, a
 `KHR_materials_clearcoat` coat of strength COAT and roughness 0.3) under a
 directional light of 1 W/m² (683 lux) at 24° from the normal, seen through a
@@ -28,7 +29,7 @@ def quaternion_from_to(a, b):
     return [c / n for c in q]
 
 
-def plane_scene(elevation_deg, specular=1.0, roughness=1.0, coat=0.0, base=0.5):
+def plane_scene(elevation_deg, specular=1.0, roughness=1.0, coat=0.0, base=0.5, metallic=0.0):
     positions = [-50, 0, -50, 50, 0, -50, 50, 0, 50, -50, 0, 50]
     normals = [0, 1, 0] * 4
     indices = [0, 2, 1, 0, 3, 2]
@@ -42,7 +43,7 @@ def plane_scene(elevation_deg, specular=1.0, roughness=1.0, coat=0.0, base=0.5):
               "rotation": [-math.sin(e / 2), 0, 0, math.cos(e / 2)]}
     material = {
         "pbrMetallicRoughness": {"baseColorFactor": [base, base, base, 1],
-                                 "metallicFactor": 0, "roughnessFactor": roughness},
+                                 "metallicFactor": metallic, "roughnessFactor": roughness},
         "extensions": {"KHR_materials_specular": {"specularFactor": specular},
                        "KHR_materials_clearcoat": {"clearcoatFactor": coat,
                                                    "clearcoatRoughnessFactor": 0.3}},

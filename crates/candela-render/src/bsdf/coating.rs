@@ -163,7 +163,12 @@ pub(crate) fn transmission_albedo(
 
 /// The mean over the visible normals m of `lobe(wo, m, wo·m) / G1(wo)` for
 /// the direction `wo` at cosine `mu`, by a `grid` × `grid` midpoint rule
-/// (`None`, a direction on the wrong side, counts 0).
+/// (`None`, a direction on the wrong side, counts 0). The radial coordinate
+/// of the visible-normal disk is u = 1 − s³ with s on the midpoint grid
+/// (weight 3s²): the steep microfacets, whose reflections the masking and
+/// the horizon cut, sit in a band of width about α² at u → 1, which plain
+/// midpoints never reach for a smooth lobe (the white GGX albedo at α =
+/// 0.065 seen from the normal came out 0.9999 instead of 0.9953).
 pub(super) fn visible_normal_mean(
     dist: MicrofacetDistribution,
     mu: f32,
@@ -174,18 +179,17 @@ pub(super) fn visible_normal_mean(
     let g1 = dist.g1(wo);
     let mut sum = 0.0f64;
     for a in 0..grid {
+        let s = (a as f64 + 0.5) / grid as f64;
+        let (radial, weight) = (1.0 - s * s * s, 3.0 * s * s);
         for b in 0..grid {
-            let u = Vec2::new(
-                (a as f32 + 0.5) / grid as f32,
-                (b as f32 + 0.5) / grid as f32,
-            );
+            let u = Vec2::new(radial as f32, (b as f32 + 0.5) / grid as f32);
             let m = dist.sample_visible_normal(wo, u);
             let cos_om = wo.dot(m);
             if cos_om <= 0.0 {
                 continue;
             }
             if let Some(value) = lobe(wo, m, cos_om) {
-                sum += f64::from(value / g1);
+                sum += weight * f64::from(value / g1);
             }
         }
     }

@@ -22,6 +22,12 @@
 //!   (the base's weight below is then exactly 1): the way a glTF file says
 //!   "pure Lambertian";
 //! - f_base = m · metal + (1 − m)(1 − t) · opaque dielectric + (1 − m) t · glass;
+//! - a rough metal also returns what its single-scattering lobe loses, as
+//!   a cosine-like lobe of the colour of multiply scattered light (Kulla and
+//!   Conty 2017; `MetallicRoughness::metal_multiple_scattering`), so that a
+//!   white metal reflects all the light, as Blender Cycles' does. The
+//!   dielectric's specular layer is not compensated: what it loses goes to
+//!   the Lambert base (see "Lambert's weight");
 //! - `KHR_materials_sheen`, with sheen colour k_s and perceptual roughness
 //!   r_s (`sheen.rs`: Estevez & Kulla's "Charlie" fibre lobe, α = r_s²,
 //!   its directional albedo E tabulated in `sheen_albedo.rs`):
@@ -293,7 +299,8 @@ impl MetallicRoughness {
         if self.has_specular_layer() {
             flags = flags.union(self.specular_lobe_flag());
         }
-        if dielectric > 0.0 {
+        if dielectric > 0.0 || (self.metallic > 0.0 && !self.is_smooth()) {
+            // The Lambert base, or the rough metal's multiple scattering.
             flags = flags.union(BsdfFlags::DIFFUSE);
         }
         if self.glass_weight() > 0.0 {
@@ -442,7 +449,45 @@ impl MetallicRoughness {
         let dist = self.distribution();
         let specular = dist.d(h) * dist.g2(wo, wi) / (4.0 * wo.z * wi.z);
         let dielectric = self.dielectric_schlick(s5) * specular + lambert;
-        glass + self.metallic * self.metal_schlick(s5) * specular + w * dielectric
+        let mut metal = self.metal_schlick(s5) * specular;
+        if self.metallic > 0.0 {
+            let ms = self.metal_multiple_scattering(wo.z);
+            let lost_i = self.metal_multiple_scattering(wi.z).lost;
+            metal += ms.color * (ms.lost * lost_i * ms.normalisation * FRAC_1_PI);
+        }
+        glass + self.metallic * metal + w * dielectric
+    }
+
+    /// The metal's multiple scattering (Kulla and Conty 2017, "Revisiting
+    /// Physically Based Shading at Imageworks"): the light a rough GGX lobe
+    /// loses to its single-scattering truncation comes back as the lobe
+    /// F_ms (1 − E(cos θo)) (1 − E(cos θi)) / (π (1 − Ē)), with E the lobe's
+    /// albedo under a white Fresnel (`specular_albedo.rs`: A + B), Ē its
+    /// cosine average, and F_ms = F̄² Ē / (1 − F̄ (1 − Ē)) the colour of
+    /// light that bounced among the microfacets (F̄ Schlick's hemispherical
+    /// average, F0 + (1 − F0)/21), at one direction's cosine. Symmetric,
+    /// so reciprocal, and a white metal reflects all the light at every
+    /// angle and roughness. Blender Cycles compensates its metals too (by
+    /// scaling the lobe at the view).
+    fn metal_multiple_scattering(&self, cos: f32) -> MultipleScattering {
+        let alpha = self.roughness * self.roughness;
+        let table = SpecularAlbedo::get();
+        let [a, b] = table.split(cos, alpha);
+        let [a_avg, b_avg] = table.average(alpha);
+        let e_avg = a_avg + b_avg;
+        if e_avg >= 1.0 {
+            return MultipleScattering {
+                color: Vec3::ZERO,
+                lost: 0.0,
+                normalisation: 0.0,
+            };
+        }
+        let f_avg = self.base_color + (Vec3::ONE - self.base_color) / 21.0;
+        MultipleScattering {
+            color: f_avg * f_avg * e_avg / (Vec3::ONE - f_avg * (1.0 - e_avg)),
+            lost: (1.0 - a - b).max(0.0),
+            normalisation: 1.0 / (1.0 - e_avg),
+        }
     }
 
     /// The factor that turns a delta sample's radiance value into its
@@ -473,6 +518,20 @@ impl MetallicRoughness {
     pub(super) fn albedo(&self) -> Vec3 {
         self.base_color
     }
+}
+
+/// The parts of the metal's multiple-scattering lobe at one direction
+/// (`MetallicRoughness::metal_multiple_scattering`): its value is
+/// `color · lost(o) · lost(i) · normalisation / π`, its albedo at `wo`
+/// `color · lost(o)`.
+struct MultipleScattering {
+    /// F_ms, the colour of light scattered more than once.
+    color: Vec3,
+    /// 1 − E(cos θ): what the single-scattering lobe loses at this
+    /// direction.
+    lost: f32,
+    /// 1 / (1 − Ē).
+    normalisation: f32,
 }
 
 /// (1 − cos)⁵, Schlick's Fresnel weight.

@@ -42,7 +42,13 @@ impl MetallicRoughness {
         let fd = self.dielectric_schlick(s5);
         let w = self.opaque_dielectric_weight();
         let specular = self.metallic * luminance(self.metal_schlick(s5)) + w * luminance(fd);
-        let diffuse = w * luminance((Vec3::ONE - fd) * self.base_color);
+        let mut diffuse = w * luminance((Vec3::ONE - fd) * self.base_color);
+        if self.metallic > 0.0 && !self.is_smooth() {
+            // The metal's multiple scattering, sampled with the Lambert
+            // base (both cosine-weighted): its albedo F_ms (1 − E(cos θo)).
+            let ms = self.metal_multiple_scattering(wo.z.abs());
+            diffuse += self.metallic * luminance(ms.color) * ms.lost;
+        }
         let glass = self.glass_weight();
         let total = specular + diffuse + glass;
         (total > 0.0 && total.is_finite()).then(|| LobeChoice {
