@@ -9,7 +9,8 @@ use super::test_support::direction_pairs;
 use super::transport::{shading_normal_correction, TransportMode};
 use super::Masking;
 use super::{
-    Blend, Bsdf, MetallicRoughness, MicrofacetDistribution, Principled, PrincipledParameters,
+    Blend, Bsdf, BsdfSample, MetallicRoughness, MicrofacetDistribution, Principled,
+    PrincipledParameters,
 };
 use crate::geometry::Frame;
 use crate::sampling::{Sampler, SamplerKind};
@@ -119,22 +120,37 @@ fn importance_bsdf_is_the_radiance_bsdf_with_directions_swapped() {
     );
 }
 
+/// Samples of `bsdf` at `wo` in radiance and in importance mode from the
+/// same `n` random numbers (seeded by `seed`), where both succeed: the two
+/// modes must pick the same directions with the same densities.
+fn samples_in_both_modes(
+    bsdf: &Bsdf,
+    wo: Vec3,
+    seed: u64,
+    n: u32,
+) -> Vec<(BsdfSample, BsdfSample)> {
+    let mut sampler = Sampler::new(SamplerKind::Independent, seed);
+    let mut pairs = Vec::new();
+    for i in 0..n {
+        sampler.start_pixel_sample(0, 0, i);
+        let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
+        if let (Some(r), Some(m)) = (
+            bsdf.sample_mode(wo, u1, u2, TransportMode::Radiance),
+            bsdf.sample_mode(wo, u1, u2, TransportMode::Importance),
+        ) {
+            assert_eq!((r.wi, r.pdf), (m.wi, m.pdf), "{wo} {u1} {u2}");
+            pairs.push((r, m));
+        }
+    }
+    pairs
+}
+
 #[test]
 fn sample_mode_scales_only_transmission_in_importance_mode() {
     let (_, bsdf) = transmitting_bsdfs().remove(0);
     let wo = Vec3::new(0.3, -0.2, 0.9).normalize();
-    let mut sampler = Sampler::new(SamplerKind::Independent, 3);
     let mut seen = [false; 2];
-    for i in 0..256 {
-        sampler.start_pixel_sample(0, 0, i);
-        let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
-        let (Some(r), Some(m)) = (
-            bsdf.sample_mode(wo, u1, u2, TransportMode::Radiance),
-            bsdf.sample_mode(wo, u1, u2, TransportMode::Importance),
-        ) else {
-            continue;
-        };
-        assert_eq!((r.wi, r.pdf), (m.wi, m.pdf));
+    for (r, m) in samples_in_both_modes(&bsdf, wo, 3, 256) {
         let scale = if r.flags.is_transmission() {
             1.5 * 1.5
         } else {
@@ -197,17 +213,7 @@ fn a_coated_models_importance_is_its_radiance_with_directions_swapped() {
         // Sampled values are the mode's too, at the same directions and
         // densities.
         let wo = Vec3::new(0.5, -0.1, 0.6).normalize();
-        let mut sampler = Sampler::new(SamplerKind::Independent, 5);
-        for i in 0..512 {
-            sampler.start_pixel_sample(0, 0, i);
-            let (u1, u2) = (sampler.next_1d(), sampler.next_2d());
-            let (Some(r), Some(m)) = (
-                bsdf.sample_mode(wo, u1, u2, TransportMode::Radiance),
-                bsdf.sample_mode(wo, u1, u2, TransportMode::Importance),
-            ) else {
-                continue;
-            };
-            assert_eq!((r.wi, r.pdf), (m.wi, m.pdf), "{name}");
+        for (_, m) in samples_in_both_modes(&bsdf, wo, 5, 512) {
             if !m.is_specular() {
                 assert_close(m.f, bsdf.f_mode(wo, m.wi, TransportMode::Importance), name);
             }
