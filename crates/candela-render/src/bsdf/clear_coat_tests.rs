@@ -222,6 +222,48 @@ fn clearcoat_zero_is_exactly_the_uncoated_model() {
 }
 
 #[test]
+fn the_mirror_direction_carries_exactly_its_delta_lobes() {
+    // A smooth coat over smooth coloured bases (metal and dielectric, and
+    // glass): over u1, the delta samples in the mirror direction must
+    // average to c S(cos) + (1 − c S(cos)) R_base(cos), the coat's
+    // reflectance and the base's delta lobes (Schlick for the metal and the
+    // dielectric layer, the exact Fresnel for the glass) under its weight,
+    // whichever lobe u1 picked. A midpoint sum over u1, so the bound is the
+    // quadrature's, not noise's.
+    let orange = Vec3::new(0.9, 0.5, 0.1);
+    let schlick = |f0: Vec3, cos: f32| f0 + (Vec3::ONE - f0) * (1.0 - cos).powi(5);
+    for (metallic, transmission) in [(0.6, 0.0), (0.0, 0.0), (0.0, 0.7), (0.3, 0.5)] {
+        let factor = 0.8;
+        let bsdf = coated(orange, metallic, 0.0, transmission, (factor, 0.0));
+        for wo in test_directions().into_iter().filter(|w| w.z > 0.05) {
+            let cos = wo.z;
+            let dielectric = (1.0 - metallic) * (1.0 - transmission);
+            let glass = (1.0 - metallic) * transmission;
+            let base = metallic * schlick(orange, cos)
+                + dielectric * schlick(Vec3::splat(0.04), cos)
+                + Vec3::splat(glass * crate::bsdf::fresnel::fresnel_dielectric(cos, 1.5));
+            let coat = factor * coat_fresnel(cos);
+            let expected = Vec3::splat(coat) + (1.0 - coat) * base;
+            let n = 20_000;
+            let mut sum = Vec3::ZERO;
+            for i in 0..n {
+                let u1 = (i as f32 + 0.5) / n as f32;
+                if let Some(s) = bsdf.sample(wo, u1, Vec2::new(0.37, 0.61)) {
+                    if s.is_specular() && s.wi == Vec3::new(-wo.x, -wo.y, wo.z) {
+                        sum += s.weight();
+                    }
+                }
+            }
+            let mean = sum / n as f32;
+            assert!(
+                (mean - expected).abs().max_element() < 2e-3,
+                "m={metallic} t={transmission} {wo}: {mean} vs {expected}"
+            );
+        }
+    }
+}
+
+#[test]
 fn a_smooth_coat_over_black_reflects_exactly_its_fresnel() {
     let factor = 0.8;
     let bsdf = coat_alone(factor, 0.0);

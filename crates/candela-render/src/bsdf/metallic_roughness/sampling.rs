@@ -173,6 +173,9 @@ impl MetallicRoughness {
             return self.smooth_sample(wo, u1, coat, &under, c);
         }
         if u1 < c.specular && self.is_smooth() {
+            if coat > 0.0 || under.sheen > 0.0 {
+                return self.mirror_sample(wo, coat, &under);
+            }
             let weight = self.smooth_reflectance(up_o.z) / c.specular;
             return delta_sample(reflect_local(wo), weight, c.specular, MIRROR_FLAGS);
         }
