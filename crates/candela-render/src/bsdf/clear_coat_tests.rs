@@ -27,6 +27,7 @@ use glam::{Vec2, Vec3};
 
 use super::test_support::*;
 use super::{Bsdf, BsdfFlags, BsdfSample, MetallicRoughness};
+use crate::sampling::warp::square_to_uniform_hemisphere;
 use crate::sampling::{Sampler, SamplerKind};
 
 fn coated(base: Vec3, metallic: f32, roughness: f32, transmission: f32, coat: (f32, f32)) -> Bsdf {
@@ -87,33 +88,17 @@ fn parts(s: BsdfSample) -> (Vec3, Vec3, f32, BsdfFlags, Vec3) {
 
 #[test]
 fn coated_sampling_matches_its_pdf() {
-    for (name, bsdf) in cases() {
-        for wo in test_directions() {
-            assert_chi2_with(name, &bsdf, wo, 100_000, (21, 41));
-        }
-    }
+    assert_cases_sample_their_pdf(&cases());
 }
 
 #[test]
 fn coated_samples_are_consistent() {
-    for (_, bsdf) in cases() {
-        for wo in test_directions() {
-            assert_samples_consistent(&bsdf, wo);
-        }
-    }
+    assert_cases_sample_consistently(&cases());
 }
 
 #[test]
 fn coated_f_agrees_with_its_sampling() {
-    let glossy = cases()
-        .into_iter()
-        .filter(|(_, b)| !b.flags().contains(BsdfFlags::SPECULAR));
-    for (name, bsdf) in glossy {
-        let wo = Vec3::new(0.4, 0.2, 0.89).normalize();
-        let a = albedo_by_sampling(&bsdf, wo, 100_000);
-        let b = albedo_by_uniform_sphere(&bsdf, wo, 400_000);
-        assert_estimates_agree(name, &a, b.mean, b.std_error);
-    }
+    assert_cases_f_agrees_with_sampling(&cases(), &[Vec3::new(0.4, 0.2, 0.89)]);
 }
 
 #[test]
@@ -131,8 +116,8 @@ fn the_coat_dims_the_base_by_its_albedo_at_the_view_alone() {
         for wo in test_directions() {
             let mut first: Option<f32> = None;
             for i in 0..64 {
-                let (u1, u2) = uniforms(&mut sampler, i);
-                let w = square_to_hemisphere(u1, u2);
+                let (_, u2) = uniforms(&mut sampler, i);
+                let w = square_to_uniform_hemisphere(u2);
                 let wi = Vec3::new(w.x, w.y, w.z.copysign(wo.z));
                 let under = base.f(wo, wi);
                 let weight = (bsdf.f(wo, wi) - lobe.f(wo, wi)) / under;
@@ -149,14 +134,6 @@ fn the_coat_dims_the_base_by_its_albedo_at_the_view_alone() {
             }
         }
     }
-}
-
-/// A direction on the upper hemisphere from two uniforms (uniform in z).
-fn square_to_hemisphere(u1: f32, u2: Vec2) -> Vec3 {
-    let z = u1.max(0.01);
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = std::f32::consts::TAU * u2.x;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
 #[test]

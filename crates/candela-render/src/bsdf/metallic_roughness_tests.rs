@@ -162,20 +162,12 @@ fn smooth_white_metal_is_exactly_the_perfect_mirror() {
 
 #[test]
 fn metallic_roughness_sampling_matches_its_pdf() {
-    for (name, bsdf) in cases() {
-        for wo in test_directions() {
-            assert_chi2_with(name, &bsdf, wo, 100_000, (21, 41));
-        }
-    }
+    assert_cases_sample_their_pdf(&cases());
 }
 
 #[test]
 fn metallic_roughness_samples_are_consistent() {
-    for (_, bsdf) in cases() {
-        for wo in test_directions() {
-            assert_samples_consistent(&bsdf, wo);
-        }
-    }
+    assert_cases_sample_consistently(&cases());
     // Smooth (clamped to the minimum α) and black still sample consistently.
     for bsdf in [mr(Vec3::ONE, 1.0, 0.0, 0.0), mr(Vec3::ZERO, 0.0, 0.5, 0.0)] {
         assert_samples_consistent(&bsdf, Vec3::new(0.3, 0.1, 0.9).normalize());
@@ -204,15 +196,7 @@ fn metallic_roughness_f_agrees_with_its_sampling() {
     // ∫ f |cos| by the model's own sampling and by uniform sphere
     // directions: checks f and sample against each other as integrals.
     // (Delta lobes are invisible to uniform directions: smooth cases skip.)
-    let glossy = cases()
-        .into_iter()
-        .filter(|(_, b)| !b.flags().contains(BsdfFlags::SPECULAR));
-    for (name, bsdf) in glossy {
-        let wo = Vec3::new(0.4, 0.2, 0.89).normalize();
-        let a = albedo_by_sampling(&bsdf, wo, 100_000);
-        let b = albedo_by_uniform_sphere(&bsdf, wo, 400_000);
-        assert_estimates_agree(name, &a, b.mean, b.std_error);
-    }
+    assert_cases_f_agrees_with_sampling(&cases(), &[Vec3::new(0.4, 0.2, 0.89)]);
 }
 
 #[test]

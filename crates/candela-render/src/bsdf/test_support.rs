@@ -2,7 +2,7 @@
 
 use glam::{DVec3, Vec2, Vec3};
 
-use super::Bsdf;
+use super::{Bsdf, BsdfFlags};
 use crate::sampling::chi2::Chi2Test;
 use crate::sampling::warp::{square_to_uniform_sphere, uniform_sphere_pdf};
 use crate::sampling::{Sampler, SamplerKind};
@@ -116,6 +116,46 @@ fn estimate(n: u32, mut value: impl FnMut(u32) -> Vec3) -> Estimate {
     Estimate {
         mean: mean.as_vec3(),
         std_error: (variance / n).powf(0.5).as_vec3(),
+    }
+}
+
+/// [`assert_chi2_with`] (100k samples, 21 × 41 cells) for every named
+/// case of a model's table at every test direction.
+pub(crate) fn assert_cases_sample_their_pdf(cases: &[(&str, Bsdf)]) {
+    for (name, bsdf) in cases {
+        for wo in test_directions() {
+            assert_chi2_with(name, bsdf, wo, 100_000, (21, 41));
+        }
+    }
+}
+
+/// [`assert_samples_consistent`] for every case at every test direction.
+pub(crate) fn assert_cases_sample_consistently(cases: &[(&str, Bsdf)]) {
+    for (_, bsdf) in cases {
+        for wo in test_directions() {
+            assert_samples_consistent(bsdf, wo);
+        }
+    }
+}
+
+/// ∫ f |cos| by each case's own sampling (100k samples) and by uniform
+/// sphere directions (400k) agree within [`assert_estimates_agree`] at
+/// each of `wos`: checks `f` and `sample` against each other as
+/// integrals. Cases with a delta lobe are skipped (uniform directions
+/// never see it); at least one case must remain.
+pub(crate) fn assert_cases_f_agrees_with_sampling(cases: &[(&str, Bsdf)], wos: &[Vec3]) {
+    let glossy: Vec<_> = cases
+        .iter()
+        .filter(|(_, b)| !b.flags().contains(BsdfFlags::SPECULAR))
+        .collect();
+    assert!(!glossy.is_empty(), "every case has a delta lobe");
+    for (name, bsdf) in glossy {
+        for &wo in wos {
+            let wo = wo.normalize();
+            let a = albedo_by_sampling(bsdf, wo, 100_000);
+            let b = albedo_by_uniform_sphere(bsdf, wo, 400_000);
+            assert_estimates_agree(name, &a, b.mean, b.std_error);
+        }
     }
 }
 

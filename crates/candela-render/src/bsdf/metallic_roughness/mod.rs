@@ -452,7 +452,7 @@ impl MetallicRoughness {
         let mut metal = self.metal_schlick(s5) * specular;
         if self.metallic > 0.0 {
             let ms = self.metal_multiple_scattering(wo.z);
-            let lost_i = self.metal_multiple_scattering(wi.z).lost;
+            let lost_i = self.metal_single_scattering_loss(wi.z);
             metal += ms.color * (ms.lost * lost_i * ms.normalisation * FRAC_1_PI);
         }
         glass + self.metallic * metal + w * dielectric
@@ -470,10 +470,7 @@ impl MetallicRoughness {
     /// angle and roughness. Blender Cycles compensates its metals too (by
     /// scaling the lobe at the view).
     fn metal_multiple_scattering(&self, cos: f32) -> MultipleScattering {
-        let alpha = self.roughness * self.roughness;
-        let table = SpecularAlbedo::get();
-        let [a, b] = table.split(cos, alpha);
-        let [a_avg, b_avg] = table.average(alpha);
+        let [a_avg, b_avg] = SpecularAlbedo::get().average(self.roughness * self.roughness);
         let e_avg = a_avg + b_avg;
         if e_avg >= 1.0 {
             return MultipleScattering {
@@ -485,9 +482,16 @@ impl MetallicRoughness {
         let f_avg = self.base_color + (Vec3::ONE - self.base_color) / 21.0;
         MultipleScattering {
             color: f_avg * f_avg * e_avg / (Vec3::ONE - f_avg * (1.0 - e_avg)),
-            lost: (1.0 - a - b).max(0.0),
+            lost: self.metal_single_scattering_loss(cos),
             normalisation: 1.0 / (1.0 - e_avg),
         }
+    }
+
+    /// 1 − E(cos): what the metal's single-scattering lobe loses at `cos`
+    /// under a white Fresnel (the table's A + B).
+    fn metal_single_scattering_loss(&self, cos: f32) -> f32 {
+        let [a, b] = SpecularAlbedo::get().split(cos, self.roughness * self.roughness);
+        (1.0 - a - b).max(0.0)
     }
 
     /// The factor that turns a delta sample's radiance value into its
