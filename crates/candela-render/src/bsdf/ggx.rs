@@ -12,6 +12,8 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
+use crate::sampling::warp::sin_cos_turns;
+
 /// D(m) = 1 / (π α_x α_y (m.x²/α_x² + m.y²/α_y² + m.z²)²); zero below the
 /// horizon.
 pub(super) fn d(alpha_x: f32, alpha_y: f32, m: Vec3) -> f32 {
@@ -50,7 +52,7 @@ pub(super) fn sample_visible_normal(alpha_x: f32, alpha_y: f32, wo: Vec3, u: Vec
     // half on the far side of the horizon is squeezed by s = (1 + v.z)/2
     // (the part of the hemisphere's projection the horizon hides).
     let r = u.x.sqrt();
-    let (sin_phi, cos_phi) = (2.0 * PI * u.y).sin_cos();
+    let (sin_phi, cos_phi) = sin_cos_turns(u.y);
     let p1 = r * cos_phi;
     let s = 0.5 * (1.0 + v.z);
     let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * sin_phi;

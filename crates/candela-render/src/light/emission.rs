@@ -27,7 +27,7 @@
 
 use super::{area::AreaLight, Light};
 use crate::geometry::{Frame, Ray};
-use crate::sampling::warp::{square_to_concentric_disk, square_to_uniform_sphere};
+use crate::sampling::warp::{sin_cos_turns, square_to_concentric_disk, square_to_uniform_sphere};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -170,7 +170,7 @@ impl super::SpotLight {
             c0 + u.x * (1.0 - c0)
         };
         let sin = (1.0 - cos * cos).max(0.0).sqrt();
-        let (s, c) = (2.0 * PI * u.y).sin_cos();
+        let (s, c) = sin_cos_turns(u.y);
         let dir = Frame::from_normal(self.direction).to_world(Vec3::new(sin * c, sin * s, cos));
         let pdf_dir = self.pdf_dir(dir);
         if pdf_dir <= 0.0 {

@@ -19,6 +19,7 @@ use glam::{Vec2, Vec3};
 
 use super::super::distribution::MicrofacetDistribution;
 use super::fresnel::schlick;
+use crate::sampling::warp::sin_cos_turns;
 
 /// The α of the coat's masking term.
 const MASKING_ALPHA: f32 = 0.25;
@@ -52,7 +53,7 @@ impl Gtr1 {
     pub(super) fn sample(&self, u: Vec2) -> Vec3 {
         let a2 = self.alpha * self.alpha;
         let cos2 = ((1.0 - a2.powf(1.0 - u.y)) / (1.0 - a2)).clamp(0.0, 1.0);
-        let (sin_phi, cos_phi) = (2.0 * PI * u.x).sin_cos();
+        let (sin_phi, cos_phi) = sin_cos_turns(u.x);
         let sin = (1.0 - cos2).sqrt();
         Vec3::new(cos_phi * sin, sin_phi * sin, cos2.sqrt())
     }

@@ -21,6 +21,7 @@ mod spherical_polygon;
 mod spherical_polygon_tests;
 #[cfg(test)]
 mod tests;
+mod trig;
 
 pub use planar::{
     concentric_disk_to_square, square_to_concentric_disk, square_to_uniform_triangle,
@@ -36,3 +37,4 @@ pub use spherical_polygon::{
     rectangle_solid_angle, square_to_spherical_rectangle, square_to_spherical_triangle,
     triangle_solid_angle,
 };
+pub use trig::{sin_cos_turns, sin_cos_within_quarter_pi};

@@ -4,6 +4,8 @@ use std::f32::consts::{FRAC_PI_4, PI};
 
 use glam::{Vec2, Vec3};
 
+use super::trig::sin_cos_within_quarter_pi;
+
 /// Shirley and Chiu's concentric map from [0, 1)² to the unit disk.
 ///
 /// It maps concentric squares to concentric circles, so strata stay compact
@@ -15,13 +17,16 @@ pub fn square_to_concentric_disk(u: Vec2) -> Vec2 {
     if a == Vec2::ZERO {
         return Vec2::ZERO;
     }
-    let (r, phi) = if a.x.abs() > a.y.abs() {
-        (a.x, FRAC_PI_4 * (a.y / a.x))
+    // φ = (π/4)(a_y/a_x) in the first case; π/2 − (π/4)(a_x/a_y) in the
+    // second, whose cosine and sine are the sine and cosine of the part
+    // within ±π/4 (so the polynomial covers both).
+    if a.x.abs() > a.y.abs() {
+        let (sin, cos) = sin_cos_within_quarter_pi(FRAC_PI_4 * (a.y / a.x));
+        a.x * Vec2::new(cos, sin)
     } else {
-        (a.y, 2.0 * FRAC_PI_4 - FRAC_PI_4 * (a.x / a.y))
-    };
-    let (sin, cos) = phi.sin_cos();
-    r * Vec2::new(cos, sin)
+        let (sin, cos) = sin_cos_within_quarter_pi(FRAC_PI_4 * (a.x / a.y));
+        a.y * Vec2::new(sin, cos)
+    }
 }
 
 /// Inverse of [`square_to_concentric_disk`] for points of the unit disk.

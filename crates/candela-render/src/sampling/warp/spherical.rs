@@ -5,12 +5,13 @@ use std::f32::consts::{FRAC_1_PI, PI};
 use glam::{Vec2, Vec3};
 
 use super::planar::{concentric_disk_to_square, square_to_concentric_disk};
+use super::trig::sin_cos_turns;
 
 /// The direction at height `z` and azimuth `2π·v`, given sin²θ directly so
 /// callers can compute it without cancellation.
 fn direction(z: f32, sin2_theta: f32, v: f32) -> Vec3 {
     let r = sin2_theta.max(0.0).sqrt();
-    let (sin, cos) = (2.0 * PI * v).sin_cos();
+    let (sin, cos) = sin_cos_turns(v);
     Vec3::new(r * cos, r * sin, z)
 }
 
